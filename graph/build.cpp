@@ -1,0 +1,347 @@
+// Graph construction: pose features, break detection, continuity analysis with pruning.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <thread>
+
+#include <Eigen/Eigenvalues>
+
+#include "engine/error.h"
+#include "graph/motion_graph.h"
+
+namespace gmg {
+
+std::vector<int> MotionGraph::key_frames() const {
+  std::vector<int> out;
+  for (int f = 0; f < frame_count(); ++f)
+    if (is_key(f)) out.push_back(f);
+  return out;
+}
+
+PoseFeatures pose_features(const Motion& m) {
+  PoseFeatures f;
+  f.positions = motion_forward_kinematics(m);
+  const int dims = static_cast<int>(f.positions.cols());
+  for (int j = 0; j < dims / 3; ++j) f.positions.middleCols(3 * j, 3) -= f.positions.leftCols(3);
+  f.positions.leftCols(3).setZero();  // root minus itself; kept so joint j stays at columns 3j..3j+2
+  f.velocities.resize(f.positions.rows(), dims);
+  if (m.frame_count >= 2) {
+    f.velocities.bottomRows(m.frame_count - 1) =
+        f.positions.bottomRows(m.frame_count - 1) - f.positions.topRows(m.frame_count - 1);
+    f.velocities.row(0) = f.velocities.row(1);
+  } else if (m.frame_count == 1) {
+    f.velocities.setZero();
+  }
+  return f;
+}
+
+double pose_distance(const PoseFeatures& f, int l, int r, const GraphParams& params) {
+  return params.lambda_pos * (f.positions.row(l) - f.positions.row(r)).norm() +
+         params.lambda_vel * (f.velocities.row(l) - f.velocities.row(r)).norm();
+}
+
+std::vector<int> capture_jump_frames(const PoseFeatures& f, const GraphParams& params) {
+  const int n = static_cast<int>(f.positions.rows());
+  std::vector<int> out;
+  if (n < 3) return out;
+  std::vector<double> d(static_cast<std::size_t>(n - 1));
+  for (int i = 0; i + 1 < n; ++i) d[i] = pose_distance(f, i, i + 1, params);
+  std::vector<double> sorted = d;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  if (median <= 0.0) return out;  // a frozen clip has no jumps to speak of
+  for (int i = 0; i + 1 < n; ++i)
+    if (d[i] > params.break_jump_factor * median) out.push_back(i);
+  return out;
+}
+
+namespace {
+
+// Candidate right frames of one left frame, in frame order.
+struct Candidate {
+  int to;
+  double weight;
+};
+
+// The exact distance test of every pair, organised so that it never holds an N x N matrix:
+// the features z = [lambda_pos * p, lambda_vel * v] are projected on their top principal axes
+// (an orthonormal projection), and ||E^T (z_l - z_r)|| <= ||z_l - z_r|| <= d(l, r) bounds the
+// distance from below. Blocks of left frames get the projected distances to all frames from one
+// matrix product; only the pairs whose bound is within the threshold get the exact distance.
+class DistanceFilter {
+ public:
+  DistanceFilter(const PoseFeatures& f, const GraphParams& params) : params_(params) {
+    const Eigen::Index n = f.positions.rows();
+    const Eigen::Index dims = f.positions.cols();
+    pos_t_ = f.positions.transpose();
+    vel_t_ = f.velocities.transpose();
+    Eigen::MatrixXd z(n, 2 * dims);
+    z << params.lambda_pos * f.positions, params.lambda_vel * f.velocities;
+    const Eigen::RowVectorXd mean = z.colwise().mean();
+    z.rowwise() -= mean;
+    const Eigen::Index k = std::min<Eigen::Index>(kProjectedDims, 2 * dims);
+    Eigen::MatrixXd basis;
+    if (k == 2 * dims) {
+      basis = Eigen::MatrixXd::Identity(2 * dims, 2 * dims);
+    } else {
+      const Eigen::MatrixXd cov = (z.transpose() * z) / std::max<double>(1.0, static_cast<double>(n));
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(cov);
+      basis = solver.eigenvectors().rightCols(k);  // eigenvalues ascend: the last k are largest
+    }
+    projected_ = (z * basis).cast<float>();      // n x k
+    projected_t_ = projected_.transpose();       // k x n, for the block products
+    norms_ = projected_.rowwise().squaredNorm();
+  }
+
+  double exact(int l, int r) const {
+    return params_.lambda_pos * (pos_t_.col(l) - pos_t_.col(r)).norm() +
+           params_.lambda_vel * (vel_t_.col(l) - vel_t_.col(r)).norm();
+  }
+
+  // Appends to out[i] the frames r (ascending, r != l, allowed(l, r)) with d(l, r) <= theta[i]
+  // for l = first + i.
+  template <typename Allowed>
+  void within(int first, int count, const std::vector<double>& theta, const Allowed& allowed,
+              std::vector<std::vector<Candidate>>& out) const {
+    const int n = static_cast<int>(projected_.rows());
+    const Eigen::MatrixXf gram = projected_.middleRows(first, count) * projected_t_;  // count x n
+    for (int i = 0; i < count; ++i) {
+      const int l = first + i;
+      const double t = theta[static_cast<std::size_t>(i)];
+      if (!(t > 0.0)) continue;
+      const float nl = norms_(l);
+      const float t2 = static_cast<float>(t * t);
+      for (int r = 0; r < n; ++r) {
+        const float sum = nl + norms_(r);
+        // Float products carry a relative error of about 1e-6 of the norms: widen the bound
+        // by more than that so no true candidate is lost; the exact test decides.
+        const float bound2 = sum - 2.0f * gram(i, r);
+        if (bound2 > t2 + 1e-4f * sum + 1e-12f) continue;
+        if (r == l || !allowed(l, r)) continue;
+        const double d = exact(l, r);
+        if (d <= t) out[static_cast<std::size_t>(i)].push_back({r, d});
+      }
+    }
+  }
+
+ private:
+  static constexpr Eigen::Index kProjectedDims = 24;
+  const GraphParams& params_;
+  Eigen::MatrixXd pos_t_, vel_t_;
+  Eigen::MatrixXf projected_, projected_t_;
+  Eigen::VectorXf norms_;
+};
+
+// Pruning 1 (SPEC "Edges"): in each run of consecutive candidate frames keep the first and
+// drop the next l_pn - 1, then keep again.
+std::vector<Candidate> prune_runs(const std::vector<Candidate>& candidates, int l_pn) {
+  std::vector<Candidate> kept;
+  int run_position = 0;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (i > 0 && candidates[i].to == candidates[i - 1].to + 1)
+      ++run_position;
+    else
+      run_position = 0;
+    if (run_position % l_pn == 0) kept.push_back(candidates[i]);
+  }
+  return kept;
+}
+
+// Unnatural edges added so far, by source frame, for pruning 2.
+class EdgeIndex {
+ public:
+  explicit EdgeIndex(int n) : targets_(static_cast<std::size_t>(n)) {}
+  void add(int a, int b) { targets_[static_cast<std::size_t>(a)].push_back(b); }
+
+  // True when an edge a -> b exists with a in [a_lo, a_hi] and b in [b_lo, b_hi].
+  bool any(int a_lo, int a_hi, int b_lo, int b_hi) const {
+    const int n = static_cast<int>(targets_.size());
+    for (int a = std::max(0, a_lo); a <= std::min(n - 1, a_hi); ++a)
+      for (int b : targets_[static_cast<std::size_t>(a)])
+        if (b >= b_lo && b <= b_hi) return true;
+    return false;
+  }
+
+ private:
+  std::vector<std::vector<int>> targets_;
+};
+
+}  // namespace
+
+std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::vector<int>& run_end,
+                                            const GraphParams& params) {
+  const int n = static_cast<int>(f.positions.rows());
+  if (static_cast<int>(run_end.size()) != n) throw Error("continuity_analysis: run_end has the wrong size");
+  std::vector<Transition> edges;
+  if (n < 2) return edges;
+  const DistanceFilter filter(f, params);
+  const int l_pn = params.l_pn;
+
+  // theta_l: mean distance to the next (up to) l_cn frames of l's run. The last frame of a run
+  // has none; it uses the previous (up to) l_cn frames instead, so clip ends can still jump on.
+  std::vector<double> theta(static_cast<std::size_t>(n), 0.0);
+  for (int l = 0; l < n; ++l) {
+    double sum = 0.0;
+    int count = 0;
+    for (int k = 1; k <= params.l_cn && l + k <= run_end[l]; ++k, ++count) sum += filter.exact(l, l + k);
+    if (count == 0) {
+      for (int k = 1; k <= params.l_cn && l - k >= 0 && run_end[l - k] == run_end[l]; ++k, ++count)
+        sum += filter.exact(l, l - k);
+    }
+    theta[l] = count > 0 ? sum / count : 0.0;
+  }
+
+  auto allowed = [&](int l, int r) {
+    if (r == l + 1) return false;  // the natural edge (or, across a break, no edge at all)
+    if (params.exclude_near && std::abs(r - l) <= l_pn) return false;
+    return true;
+  };
+
+  EdgeIndex index(n);
+  const unsigned workers = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+  constexpr int kBlock = 256;
+  std::vector<std::vector<Candidate>> candidates;
+  for (int block = 0; block < n; block += kBlock * static_cast<int>(workers)) {
+    const int block_count = std::min(kBlock * static_cast<int>(workers), n - block);
+    candidates.assign(static_cast<std::size_t>(block_count), {});
+    // Candidates of each left frame are independent: compute them in parallel...
+    std::vector<std::thread> threads;
+    for (unsigned w = 0; w < workers; ++w) {
+      const int first = block + static_cast<int>(w) * kBlock;
+      const int count = std::min(kBlock, block + block_count - first);
+      if (count <= 0) break;
+      threads.emplace_back([&, first, count] {
+        std::vector<std::vector<Candidate>> local(static_cast<std::size_t>(count));
+        const std::vector<double> local_theta(theta.begin() + first, theta.begin() + first + count);
+        filter.within(first, count, local_theta, allowed, local);
+        for (int i = 0; i < count; ++i) candidates[static_cast<std::size_t>(first - block + i)] = std::move(local[static_cast<std::size_t>(i)]);
+      });
+    }
+    for (std::thread& t : threads) t.join();
+    // ...but pruning 2 depends on the edges of earlier left frames: walk them in order.
+    for (int i = 0; i < block_count; ++i) {
+      const int l = block + i;
+      const std::vector<Candidate> kept = prune_runs(candidates[static_cast<std::size_t>(i)], l_pn);
+      std::vector<Candidate> survivors;
+      for (const Candidate& c : kept) {
+        const int r = c.to;
+        if (index.any(l - l_pn, l + l_pn, r - l_pn, r + l_pn) || index.any(r - l_pn, r + l_pn, l - l_pn, l + l_pn))
+          continue;
+        survivors.push_back(c);
+      }
+      for (const Candidate& c : survivors) {
+        index.add(l, c.to);
+        edges.push_back({l, c.to, c.weight});
+      }
+    }
+  }
+  return edges;
+}
+
+MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params) {
+  if (clips.empty()) throw Error("graph build: no reference clip given");
+  MotionGraph g;
+  g.params = params;
+  const Motion& first = clips.front().motion;
+  int total = 0;
+  for (const ClipEvents& c : clips) {
+    std::string why;
+    if (!skeletons_match(first.skeleton, c.motion.skeleton, &why))
+      throw Error(c.name + ": skeleton differs from " + clips.front().name + "'s: " + why);
+    if (std::abs(c.motion.fps - first.fps) > 1e-6)
+      throw Error(c.name + ": " + std::to_string(c.motion.fps) + " fps differs from " + clips.front().name + "'s " +
+                  std::to_string(first.fps) + " fps");
+    if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
+    total += c.motion.frame_count;
+  }
+
+  g.motion = motion_rest(first.skeleton, first.fps, 0);
+  g.motion.frame_count = total;
+  PoseFeatures features;
+  features.positions.resize(total, 3 * first.joint_count());
+  features.velocities.resize(total, 3 * first.joint_count());
+  g.graph = GraphStorage(static_cast<std::size_t>(total));
+  std::vector<int> run_end(static_cast<std::size_t>(total));
+
+  int offset = 0;
+  for (ClipEvents& c : clips) {
+    const Motion& m = c.motion;
+    g.clips.push_back({c.name, offset, m.frame_count});
+    g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
+    g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
+    const PoseFeatures cf = pose_features(m);
+    features.positions.middleRows(offset, m.frame_count) = cf.positions;
+    features.velocities.middleRows(offset, m.frame_count) = cf.velocities;
+
+    std::vector<int> breaks = capture_jump_frames(cf, params);
+    breaks.push_back(m.frame_count - 1);
+    for (int b : breaks) g.graph[static_cast<std::size_t>(offset + b)].kinds |= kBreakNode;
+    for (int f : c.onset_frames) {
+      if (f < 0 || f >= m.frame_count) throw Error(c.name + ": onset frame " + std::to_string(f) + " outside the clip");
+      g.graph[static_cast<std::size_t>(offset + f)].kinds |= kOnsetNode;
+    }
+    for (const auto& [f, word] : c.keyword_frames) {
+      if (f < 0 || f >= m.frame_count) throw Error(c.name + ": keyword frame " + std::to_string(f) + " outside the clip");
+      NodeInfo& node = g.graph[static_cast<std::size_t>(offset + f)];
+      if (node.kinds & kKeywordNode) continue;  // one label per node: the first keyword wins
+      node.kinds |= kKeywordNode;
+      node.keyword = word;
+    }
+    offset += m.frame_count;
+    c.motion = Motion();  // release the clip's copy early
+  }
+
+  // Natural edges inside continuous runs; run_end for the continuity analysis.
+  int end = total - 1;
+  for (int f = total - 1; f >= 0; --f) {
+    if (g.node(f).kinds & kBreakNode) end = f;
+    run_end[static_cast<std::size_t>(f)] = end;
+  }
+  for (int f = 0; f + 1 < total; ++f)
+    if (!(g.node(f).kinds & kBreakNode))
+      boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+
+  for (const Transition& t : continuity_analysis(features, run_end, params))
+    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false}, g.graph);
+  return g;
+}
+
+GraphStats graph_stats(const MotionGraph& g) {
+  GraphStats s;
+  s.frames = g.frame_count();
+  s.clips = static_cast<int>(g.clips.size());
+  std::vector<char> has_transition(static_cast<std::size_t>(s.frames), 0);
+  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
+    if (g.graph[*it].natural) {
+      ++s.natural_edges;
+    } else {
+      ++s.unnatural_edges;
+      has_transition[boost::source(*it, g.graph)] = 1;
+    }
+  }
+  int previous_key = -1;
+  s.shortest_subsequence = 0;
+  for (int f = 0; f < s.frames; ++f) {
+    const NodeInfo& n = g.node(f);
+    if (n.kinds & kOnsetNode) ++s.onset_nodes;
+    if (n.kinds & kKeywordNode) ++s.keyword_nodes;
+    if (n.kinds & kBreakNode) ++s.break_nodes;
+    if (n.kinds) {
+      ++s.key_nodes;
+      if (previous_key >= 0) {
+        const int len = f - previous_key;
+        s.shortest_subsequence = s.shortest_subsequence == 0 ? len : std::min(s.shortest_subsequence, len);
+        s.longest_subsequence = std::max(s.longest_subsequence, len);
+      }
+      previous_key = f;
+    }
+  }
+  if (s.frames > 0) {
+    s.mean_out_degree = static_cast<double>(s.natural_edges + s.unnatural_edges) / s.frames;
+    s.share_with_transition =
+        static_cast<double>(std::count(has_transition.begin(), has_transition.end(), 1)) / s.frames;
+  }
+  return s;
+}
+
+}  // namespace gmg

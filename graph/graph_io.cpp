@@ -1,0 +1,346 @@
+// Saving and loading built graphs; GraphViz and GraphML export.
+//
+// File format (version 1), little-endian:
+//   8 bytes  "GMGRAPH\0"
+//   u32      format version
+//   u64      payload size in bytes
+//   payload  params, skeleton, motion, clips, nodes, edges (see write_payload)
+//   u64      FNV-1a hash of the payload
+// A file with another magic or version, a short or over-long payload or a wrong hash is
+// rejected before anything is used.
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <boost/graph/graphml.hpp>
+#include <boost/graph/graphviz.hpp>
+#include <boost/property_map/dynamic_property_map.hpp>
+
+#include "engine/error.h"
+#include "engine/file_util.h"
+#include "graph/motion_graph.h"
+
+namespace gmg {
+namespace {
+
+constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
+constexpr std::uint32_t kVersion = 1;
+
+std::uint64_t fnv1a(const char* data, std::size_t size) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <typename T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable<T>::value, "pod only");
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  void str(const std::string& s) {
+    pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
+    out_.append(s);
+  }
+  template <typename T>
+  void vec(const std::vector<T>& v) {
+    pod<std::uint64_t>(v.size());
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  const std::string& bytes() const { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  Reader(const char* data, std::size_t size, const std::string& path) : data_(data), size_(size), path_(path) {}
+  template <typename T>
+  T pod() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, data_ + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  std::string str() {
+    const std::uint32_t n = pod<std::uint32_t>();
+    need(n);
+    std::string s(data_ + pos_, n);
+    pos_ += n;
+    return s;
+  }
+  template <typename T>
+  std::vector<T> vec() {
+    const std::uint64_t n = pod<std::uint64_t>();
+    if (n > (size_ - pos_) / sizeof(T)) fail("a list is longer than the file");
+    std::vector<T> v(static_cast<std::size_t>(n));
+    if (n) std::memcpy(v.data(), data_ + pos_, static_cast<std::size_t>(n) * sizeof(T));
+    pos_ += static_cast<std::size_t>(n) * sizeof(T);
+    return v;
+  }
+  bool done() const { return pos_ == size_; }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(error_at_byte(path_, static_cast<long long>(pos_ + 20), "damaged graph file: " + what));
+  }
+
+ private:
+  void need(std::size_t n) {
+    if (n > size_ - pos_) fail("unexpected end of data");
+  }
+  const char* data_;
+  std::size_t size_;
+  std::size_t pos_ = 0;
+  const std::string& path_;
+};
+
+void write_payload(Writer& w, const MotionGraph& g) {
+  const GraphParams& p = g.params;
+  w.pod(p.lambda_pos);
+  w.pod(p.lambda_vel);
+  w.pod<std::int32_t>(p.l_cn);
+  w.pod<std::int32_t>(p.l_pn);
+  w.pod<std::uint8_t>(p.exclude_near ? 1 : 0);
+  w.pod(p.min_onset_strength);
+  w.pod(p.break_jump_factor);
+  w.str(p.keywords);
+
+  const Skeleton& sk = g.motion.skeleton;
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(sk.joint_count()));
+  for (const Joint& j : sk.joints) {
+    w.str(j.name);
+    w.pod<std::int32_t>(j.parent);
+    w.pod(j.offset);
+    std::vector<std::uint8_t> channels;
+    for (Channel c : j.channels) channels.push_back(static_cast<std::uint8_t>(c));
+    w.vec(channels);
+    w.pod<std::uint8_t>(j.has_end_site ? 1 : 0);
+    w.pod(j.end_site);
+  }
+  w.pod(g.motion.fps);
+  w.pod<std::int32_t>(g.motion.frame_count);
+  w.vec(g.motion.rotations);
+  w.vec(g.motion.translations);
+
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.clips.size()));
+  for (const ClipInfo& c : g.clips) {
+    w.str(c.name);
+    w.pod<std::int32_t>(c.first_frame);
+    w.pod<std::int32_t>(c.frame_count);
+  }
+  for (int f = 0; f < g.frame_count(); ++f) {
+    w.pod(g.node(f).kinds);
+    w.str(g.node(f).keyword);
+  }
+  w.pod<std::uint64_t>(boost::num_edges(g.graph));
+  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
+    w.pod<std::int32_t>(static_cast<std::int32_t>(boost::source(*it, g.graph)));
+    w.pod<std::int32_t>(static_cast<std::int32_t>(boost::target(*it, g.graph)));
+    w.pod(g.graph[*it].weight);
+    w.pod<std::uint8_t>(g.graph[*it].natural ? 1 : 0);
+  }
+}
+
+MotionGraph read_payload(Reader& r) {
+  MotionGraph g;
+  GraphParams& p = g.params;
+  p.lambda_pos = r.pod<double>();
+  p.lambda_vel = r.pod<double>();
+  p.l_cn = r.pod<std::int32_t>();
+  p.l_pn = r.pod<std::int32_t>();
+  p.exclude_near = r.pod<std::uint8_t>() != 0;
+  p.min_onset_strength = r.pod<double>();
+  p.break_jump_factor = r.pod<double>();
+  p.keywords = r.str();
+
+  Skeleton sk;
+  const std::uint32_t joints = r.pod<std::uint32_t>();
+  if (joints == 0 || joints > 100000) r.fail("implausible joint count");
+  for (std::uint32_t i = 0; i < joints; ++i) {
+    Joint j;
+    j.name = r.str();
+    j.parent = r.pod<std::int32_t>();
+    if (j.parent >= static_cast<int>(i) || (i > 0 && j.parent < 0) || (i == 0 && j.parent != -1))
+      r.fail("joint hierarchy out of order");
+    j.offset = r.pod<glm::dvec3>();
+    for (std::uint8_t c : r.vec<std::uint8_t>()) {
+      if (c > 5) r.fail("unknown channel");
+      j.channels.push_back(static_cast<Channel>(c));
+    }
+    // Rotation order follows from the channels exactly as in the BVH reader.
+    EulerOrder order{};
+    bool used[3] = {false, false, false};
+    int n = 0;
+    for (Channel c : j.channels)
+      if (!is_position_channel(c) && !used[channel_axis(c)]) {
+        order[n++] = channel_axis(c);
+        used[channel_axis(c)] = true;
+      }
+    for (int axis = 0; axis < 3; ++axis)
+      if (!used[axis]) order[n++] = axis;
+    j.rotation_order = order;
+    j.has_end_site = r.pod<std::uint8_t>() != 0;
+    j.end_site = r.pod<glm::dvec3>();
+    sk.joints.push_back(j);
+  }
+  g.motion.skeleton = sk;
+  g.motion.fps = r.pod<double>();
+  g.motion.frame_count = r.pod<std::int32_t>();
+  if (!(g.motion.fps > 0) || g.motion.frame_count < 1) r.fail("invalid fps or frame count");
+  g.motion.rotations = r.vec<glm::dquat>();
+  g.motion.translations = r.vec<glm::dvec3>();
+  const std::size_t expected = static_cast<std::size_t>(g.motion.frame_count) * joints;
+  if (g.motion.rotations.size() != expected || g.motion.translations.size() != expected)
+    r.fail("motion size disagrees with frames x joints");
+
+  const std::uint32_t clips = r.pod<std::uint32_t>();
+  int covered = 0;
+  for (std::uint32_t i = 0; i < clips; ++i) {
+    ClipInfo c;
+    c.name = r.str();
+    c.first_frame = r.pod<std::int32_t>();
+    c.frame_count = r.pod<std::int32_t>();
+    if (c.first_frame != covered || c.frame_count < 1) r.fail("clip table inconsistent");
+    covered += c.frame_count;
+    g.clips.push_back(c);
+  }
+  if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
+  g.graph = GraphStorage(static_cast<std::size_t>(g.motion.frame_count));
+  for (int f = 0; f < g.motion.frame_count; ++f) {
+    NodeInfo& n = g.graph[static_cast<std::size_t>(f)];
+    n.kinds = r.pod<std::uint8_t>();
+    n.keyword = r.str();
+  }
+  const std::uint64_t edges = r.pod<std::uint64_t>();
+  for (std::uint64_t e = 0; e < edges; ++e) {
+    const int a = r.pod<std::int32_t>();
+    const int b = r.pod<std::int32_t>();
+    const double w = r.pod<double>();
+    const bool natural = r.pod<std::uint8_t>() != 0;
+    if (a < 0 || b < 0 || a >= g.motion.frame_count || b >= g.motion.frame_count) r.fail("edge outside the graph");
+    boost::add_edge(static_cast<std::size_t>(a), static_cast<std::size_t>(b), EdgeInfo{w, natural}, g.graph);
+  }
+  if (!r.done()) r.fail("trailing bytes after the edges");
+  return g;
+}
+
+// The subgraph of frames [from, to) as a fresh adjacency_list (vertex i = frame from + i).
+GraphStorage subgraph(const MotionGraph& g, int from, int to) {
+  if (from < 0 || to > g.frame_count() || from >= to)
+    throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) + " is outside the graph's 0:" +
+                std::to_string(g.frame_count()));
+  GraphStorage sub(static_cast<std::size_t>(to - from));
+  for (int f = from; f < to; ++f) sub[static_cast<std::size_t>(f - from)] = g.node(f);
+  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
+    const int a = static_cast<int>(boost::source(*it, g.graph));
+    const int b = static_cast<int>(boost::target(*it, g.graph));
+    if (a >= from && a < to && b >= from && b < to)
+      boost::add_edge(static_cast<std::size_t>(a - from), static_cast<std::size_t>(b - from), g.graph[*it], sub);
+  }
+  return sub;
+}
+
+std::string kind_names(std::uint8_t kinds) {
+  std::string s;
+  if (kinds & kOnsetNode) s += "onset ";
+  if (kinds & kKeywordNode) s += "keyword ";
+  if (kinds & kBreakNode) s += "break ";
+  if (!s.empty()) s.pop_back();
+  return s.empty() ? "regular" : s;
+}
+
+}  // namespace
+
+void graph_save(const std::string& path, const MotionGraph& g) {
+  Writer w;
+  write_payload(w, g);
+  const std::string& payload = w.bytes();
+  write_file_atomically(
+      path,
+      [&](std::ostream& out) {
+        out.write(kMagic, sizeof kMagic);
+        const std::uint32_t version = kVersion;
+        out.write(reinterpret_cast<const char*>(&version), sizeof version);
+        const std::uint64_t size = payload.size();
+        out.write(reinterpret_cast<const char*>(&size), sizeof size);
+        out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
+        const std::uint64_t hash = fnv1a(payload.data(), payload.size());
+        out.write(reinterpret_cast<const char*>(&hash), sizeof hash);
+      },
+      true);
+}
+
+MotionGraph graph_load(const std::string& path) {
+  const std::string bytes = read_file_bytes(path);
+  constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw Error(path + ": not a gmg graph file (build one with 'gmg build')");
+  if (bytes.size() < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
+  std::uint32_t version = 0;
+  std::memcpy(&version, bytes.data() + 8, sizeof version);
+  if (version != kVersion)
+    throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads version " +
+                std::to_string(kVersion) + ": rebuild it with 'gmg build'");
+  std::uint64_t size = 0;
+  std::memcpy(&size, bytes.data() + 12, sizeof size);
+  if (size != bytes.size() - kHeader - sizeof(std::uint64_t))
+    throw Error(error_at_byte(path, 12, "graph file is truncated or has trailing bytes (payload " + std::to_string(size) +
+                                            " bytes declared, " + std::to_string(bytes.size() - kHeader - 8) + " present)"));
+  std::uint64_t hash = 0;
+  std::memcpy(&hash, bytes.data() + kHeader + size, sizeof hash);
+  if (hash != fnv1a(bytes.data() + kHeader, static_cast<std::size_t>(size)))
+    throw Error(path + ": graph file is damaged (checksum mismatch)");
+  Reader r(bytes.data() + kHeader, static_cast<std::size_t>(size), path);
+  return read_payload(r);
+}
+
+void graph_write_dot(const std::string& path, const MotionGraph& g, int from, int to) {
+  const GraphStorage sub = subgraph(g, from, to);
+  write_file_atomically(path, [&](std::ostream& out) {
+    boost::write_graphviz(
+        out, sub,
+        [&](std::ostream& os, std::size_t v) {
+          const NodeInfo& n = sub[v];
+          os << "[label=\"" << (from + static_cast<int>(v));
+          if (n.kinds & kKeywordNode) os << "\\n" << n.keyword;
+          os << "\"";
+          if (n.kinds & kBreakNode)
+            os << ", shape=box, color=red";
+          else if (n.kinds & kKeywordNode)
+            os << ", shape=doublecircle, color=blue";
+          else if (n.kinds & kOnsetNode)
+            os << ", shape=circle, color=darkgreen";
+          os << "]";
+        },
+        [&](std::ostream& os, const GraphStorage::edge_descriptor& e) {
+          if (sub[e].natural)
+            os << "[color=gray]";
+          else
+            os << "[color=orange, label=\"" << sub[e].weight << "\"]";
+        });
+  });
+}
+
+void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
+  GraphStorage sub = subgraph(g, from, to);
+  std::vector<int> frame(boost::num_vertices(sub));
+  std::vector<std::string> kinds(boost::num_vertices(sub));
+  for (std::size_t v = 0; v < frame.size(); ++v) {
+    frame[v] = from + static_cast<int>(v);
+    kinds[v] = kind_names(sub[v].kinds);
+  }
+  boost::dynamic_properties dp;
+  dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
+  dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
+  dp.property("keyword", boost::get(&NodeInfo::keyword, sub));
+  dp.property("weight", boost::get(&EdgeInfo::weight, sub));
+  dp.property("natural", boost::get(&EdgeInfo::natural, sub));
+  write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
+}
+
+}  // namespace gmg
