@@ -123,13 +123,6 @@ const std::vector<Accessor>& accessors() {
       int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search, &SearchParams::ignore_rounds),
       int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
       string_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve),
-      {{"lock_joints", "joints whose yaw/pitch are locked and roll smoothed, comma separated"},
-       [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_list(v); },
-       [](const Config& c) {
-         std::string s;
-         for (const std::string& j : c.cleanup.lock_joints) s += (s.empty() ? "" : ",") + j;
-         return s;
-       }},
       {{"seed", "seed of every random choice"},
        [](Config& c, const std::string& v) {
          const long long x = parse_int("seed", v);
@@ -202,8 +195,6 @@ std::string config_to_json(const Config& config) {
     const std::string v = a.get(config);
     if (a.key.name == "w_full") {
       j[a.key.name] = config.search.w_full;
-    } else if (a.key.name == "lock_joints") {
-      j[a.key.name] = config.cleanup.lock_joints;
     } else if (a.key.name == "seed") {
       j[a.key.name] = config.seed;
     } else if (v == "true" || v == "false") {

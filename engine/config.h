@@ -55,17 +55,10 @@ struct BlendParams {
   std::string curve = "sigmoid";    // "linear" or "sigmoid"
 };
 
-struct CleanupParams {
-  // Joints whose yaw and pitch are locked (set to their clip mean) and whose roll is smoothed
-  // with Savitzky-Golay (window 15, order 3); empty = off (the paper's GENEA setup names wrists).
-  std::vector<std::string> lock_joints;
-};
-
 struct Config {
   GraphParams graph;
   SearchParams search;
   BlendParams blend;
-  CleanupParams cleanup;
   std::uint64_t seed = 20231009;    // default seed (the paper's conference date)
 };
 

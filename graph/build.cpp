@@ -45,7 +45,9 @@ std::vector<int> capture_jump_frames(const PoseFeatures& f, const GraphParams& p
   std::vector<int> out;
   if (n < 3) return out;
   std::vector<double> d(static_cast<std::size_t>(n - 1));
-  for (int i = 0; i + 1 < n; ++i) d[i] = pose_distance(f, i, i + 1, params);
+  // Positions only: a teleport also spikes the velocity term at the next frame, which would
+  // mark two breaks for one jump.
+  for (int i = 0; i + 1 < n; ++i) d[i] = (f.positions.row(i) - f.positions.row(i + 1)).norm();
   std::vector<double> sorted = d;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   const double median = sorted[sorted.size() / 2];

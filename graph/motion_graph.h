@@ -79,7 +79,7 @@ PoseFeatures pose_features(const Motion& m);
 // d(l, r) = lambda_pos * ||p_l - p_r|| + lambda_vel * ||v_l - v_r||.
 double pose_distance(const PoseFeatures& f, int l, int r, const GraphParams& params);
 
-// Frames whose distance to the next one is above break_jump_factor x the median distance.
+// Frames whose position distance ||p_i - p_{i+1}|| is above break_jump_factor x the median.
 std::vector<int> capture_jump_frames(const PoseFeatures& f, const GraphParams& params);
 
 // One unnatural edge before it is added.

@@ -1,0 +1,52 @@
+// WAV reading and writing, and polyphase resampling.
+//
+// The engine reads speech as mono float samples. read_wav accepts the WAV
+// variants found in the field (PCM 8/16/24/32-bit, IEEE float 32/64,
+// WAVE_FORMAT_EXTENSIBLE, any channel count and sample rate) and rejects
+// everything else with a gmg::Error naming the file, the byte offset and the
+// problem. resample_poly reproduces scipy.signal.resample_poly, which is what
+// librosa.load(sr=22050, res_type="polyphase") uses, so the onset detector
+// sees the same samples as the librosa reference.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace gmg::audio {
+
+// Mono audio.
+struct Audio {
+  // Samples per second; > 0 for anything read_wav returns.
+  int sample_rate = 0;
+  // One sample per tick, nominally in [-1, 1]: integer PCM is scaled by
+  // 2^(bits-1) (so it lies in [-1, 1)); float WAV data is kept as stored (it
+  // may exceed [-1, 1] slightly, as librosa keeps it), never NaN or inf.
+  std::vector<float> samples;
+
+  // Seconds: samples.size() / sample_rate (0 when sample_rate is 0).
+  double duration() const;
+};
+
+// Reads a RIFF/WAVE file and mixes its channels down to mono (mean of the
+// channels). Throws gmg::Error "path: byte N: problem" on anything it cannot
+// read faithfully (see wav.cpp for the list).
+Audio read_wav(const std::string& path);
+
+// As above, then resamples to target_rate with resample_poly when the file's
+// rate differs. target_rate must be > 0.
+Audio read_wav(const std::string& path, int target_rate);
+
+// scipy.signal.resample_poly(x, up, down) with up/down = to_rate/from_rate in
+// lowest terms, window ('kaiser', 5.0), zero padding. Output sample n lies at
+// time n / to_rate (zero phase); the output has ceil(len(x) * up / down)
+// samples. Returns a copy when the rates are equal. Throws gmg::Error when a
+// rate is not positive.
+std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate);
+
+// Writes mono 16-bit PCM (samples clipped to [-1, 1], scaled by 32768 and
+// rounded, so anything read from a PCM16 file writes back bit-identical).
+// Writes path + ".tmp" first and renames it, so a reader never sees half a
+// file. Throws gmg::Error when the file cannot be written or a has no rate.
+void write_wav_pcm16(const std::string& path, const Audio& a);
+
+}  // namespace gmg::audio

@@ -1,0 +1,26 @@
+// Assembling path pieces into one motion (paper 4.2.4; SPEC "Blending").
+#pragma once
+
+#include <vector>
+
+#include "engine/config.h"
+#include "engine/motion.h"
+
+namespace gmg {
+
+// Blend weight i of n (i = 0..n-1), rising from near 0 to near 1: linear (i+1)/(n+1) or a
+// logistic curve (steepness 10) rescaled to the same end points. curve is "linear" or "sigmoid".
+double blend_weight(int i, int n, const std::string& curve);
+
+// Frames of `source` at the path's frames, resampled evenly to exactly `length` frames
+// (SLERP for rotations, linear for translations between neighbouring path frames).
+Motion resample_path(const Motion& source, const std::vector<int>& path, int length);
+
+// Concatenates pieces (same skeleton), blending every junction: the last L_l = min(l_blend,
+// len(left)) frames of the result so far and the first L_r = min(l_blend, len(right)) frames of
+// the right piece become L_l + L_r frames that cross-fade "left, then its last frame held" into
+// "right's first frame held, then right". The blended frames start at the left content and end
+// at the right content, so the junction has no jump; the total frame count is the sum.
+Motion blend_concatenate(const std::vector<Motion>& pieces, const BlendParams& params);
+
+}  // namespace gmg

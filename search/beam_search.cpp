@@ -1,0 +1,113 @@
+#include "search/beam_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gmg {
+
+bool is_stop_node(const MotionGraph& g, int f, const BeamRequest& request) {
+  if (!request.ignore_stop.empty() && request.ignore_stop[static_cast<std::size_t>(f)]) return false;
+  const NodeInfo& n = g.node(f);
+  if (request.kind == Termination::Keyword) return (n.kinds & kKeywordNode) && n.keyword == request.keyword;
+  return (n.kinds & (kOnsetNode | kBreakNode)) != 0;
+}
+
+double path_cost(double weight_sum, int length, int target_length, const SearchParams& params) {
+  return params.lambda_w * weight_sum +
+         params.lambda_len * std::abs(1.0 - static_cast<double>(length) / static_cast<double>(target_length));
+}
+
+namespace {
+
+// Paths share prefixes: each beam entry points at a node of this tree of extensions, so an
+// extension costs O(1) instead of copying the path.
+struct TreeNode {
+  int frame;
+  int parent;  // index in the tree, -1 for a start node
+};
+
+struct Entry {
+  int tree;           // last node of the path, in the tree
+  int length;         // nodes in the path
+  double weight_sum;  // sum of edge weights along it
+  double cost;
+  bool terminated;
+};
+
+}  // namespace
+
+BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const SearchParams& params) {
+  BeamResult result;
+  const int target = std::max(1, request.target_length);
+  const int min_len = static_cast<int>(std::ceil(0.9 * target - 1e-9));
+  const int max_len = static_cast<int>(std::floor(1.1 * target + 1e-9));
+  const int max_iterations = static_cast<int>(params.max_length_factor * target) + 2;
+  const std::size_t width = static_cast<std::size_t>(std::max(1, params.l_npaths));
+
+  std::vector<TreeNode> tree;
+  std::vector<Entry> beam;
+  for (int s : request.start_nodes) {
+    tree.push_back({s, -1});
+    beam.push_back({static_cast<int>(tree.size()) - 1, 1, 0.0, path_cost(0.0, 1, target, params), false});
+  }
+  auto accepted = [&](const Entry& e) { return e.terminated && e.length >= min_len && e.length <= max_len; };
+  auto by_cost = [](const Entry& a, const Entry& b) {
+    if (a.cost != b.cost) return a.cost < b.cost;
+    return a.tree < b.tree;  // deterministic ties: older paths first
+  };
+  std::sort(beam.begin(), beam.end(), by_cost);
+  if (beam.size() > width) beam.resize(width);
+
+  // A one-frame target is met by the start node itself.
+  if (target == 1 && !beam.empty()) {
+    result.accepted = true;
+    result.path = {tree[static_cast<std::size_t>(beam.front().tree)].frame};
+    result.cost = beam.front().cost;
+    return result;
+  }
+
+  std::vector<Entry> next;
+  for (int it = 0; it < max_iterations && !beam.empty(); ++it) {
+    const bool all_accepted = std::all_of(beam.begin(), beam.end(), accepted);
+    // An unterminated path can still become accepted only while it is shorter than max_len.
+    const bool extensible = std::any_of(beam.begin(), beam.end(),
+                                        [&](const Entry& e) { return !e.terminated && e.length < max_len; });
+    if (all_accepted || !extensible) break;
+    next.clear();
+    for (const Entry& e : beam) {
+      if (e.terminated || e.length >= max_len) {
+        next.push_back(e);  // terminated paths go to the watch list as they are
+        continue;
+      }
+      const int frame = tree[static_cast<std::size_t>(e.tree)].frame;
+      for (auto [out, end] = boost::out_edges(static_cast<std::size_t>(frame), g.graph); out != end; ++out) {
+        const int child = static_cast<int>(boost::target(*out, g.graph));
+        tree.push_back({child, e.tree});
+        Entry x;
+        x.tree = static_cast<int>(tree.size()) - 1;
+        x.length = e.length + 1;
+        x.weight_sum = e.weight_sum + g.graph[*out].weight;
+        x.cost = path_cost(x.weight_sum, x.length, target, params);
+        x.terminated = is_stop_node(g, child, request);
+        next.push_back(x);
+      }
+    }
+    std::sort(next.begin(), next.end(), by_cost);
+    if (next.size() > width) next.resize(width);
+    beam.swap(next);
+    ++result.iterations;
+  }
+
+  const Entry* best = nullptr;
+  for (const Entry& e : beam)
+    if (accepted(e) && (!best || by_cost(e, *best))) best = &e;
+  if (!best) return result;
+  result.accepted = true;
+  result.cost = best->cost;
+  for (int t = best->tree; t >= 0; t = tree[static_cast<std::size_t>(t)].parent)
+    result.path.push_back(tree[static_cast<std::size_t>(t)].frame);
+  std::reverse(result.path.begin(), result.path.end());
+  return result;
+}
+
+}  // namespace gmg

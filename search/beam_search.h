@@ -1,0 +1,38 @@
+// Beam search for one subsequence (paper 4.2.1, 4.2.2, A.1.2; SPEC "Beam search").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/config.h"
+#include "graph/motion_graph.h"
+#include "search/segmentation.h"
+
+namespace gmg {
+
+struct BeamRequest {
+  std::vector<int> start_nodes;        // one-node paths the beam starts from (graph frames)
+  int target_length = 1;               // l_sub (>= 1)
+  Termination kind = Termination::Rhythm;
+  std::string keyword;                 // for Keyword termination
+  // Frames whose stopping role is ignored (fallback 2); empty = none. Size 0 or frame_count.
+  std::vector<char> ignore_stop;
+};
+
+struct BeamResult {
+  bool accepted = false;               // a terminated path with 0.9 l_sub <= len <= 1.1 l_sub exists
+  std::vector<int> path;               // the accepted path of lowest cost (graph frames), else empty
+  double cost = 0.0;                   // its cost
+  int iterations = 0;                  // beam extensions performed
+};
+
+// True when frame `f` ends a path for this request (not considering the start node).
+bool is_stop_node(const MotionGraph& g, int f, const BeamRequest& request);
+
+// Runs the beam. Always ends: after max_length_factor * l_sub + 2 extensions at most.
+BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const SearchParams& params);
+
+// Path cost: lambda_w * sum of edge weights + lambda_len * |1 - len / l_sub|.
+double path_cost(double weight_sum, int length, int target_length, const SearchParams& params);
+
+}  // namespace gmg

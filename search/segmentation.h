@@ -1,0 +1,29 @@
+// Splitting test speech into subsequences (SPEC "Test speech segmentation").
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gmg {
+
+enum class Termination {
+  Rhythm,   // end at any onset or break node
+  Keyword,  // end at a keyword node with the same label
+};
+
+struct Subsequence {
+  int start = 0;                          // first test frame
+  int length = 0;                         // target length l_sub in frames (>= 1)
+  Termination kind = Termination::Rhythm;
+  std::string keyword;                    // the label when kind == Keyword
+};
+
+// Boundaries are the sorted unique key frames in (0, total) together with 0 and total. A
+// subsequence ends with keyword termination when its end frame is a keyword frame (the first
+// keyword listed for that frame wins), otherwise with rhythm; the last one ends at total with
+// rhythm. Frames outside (0, total) are ignored. total >= 1.
+std::vector<Subsequence> segment_speech(int total, const std::vector<int>& onset_frames,
+                                        const std::vector<std::pair<int, std::string>>& keyword_frames);
+
+}  // namespace gmg
