@@ -1,0 +1,100 @@
+// Benchmark: graph construction and reenactment speed and memory. Prints figures; asserts
+// nothing about time (machines are shared and noisy). Run: build/bench_graph
+//
+//  1. graph of beat2_scott/2_scott_0_1_1 (1906 frames), when ../shared/data is present;
+//  2. graph of a synthetic 427 s reference (12,810 frames, the paper's longest), 25 joints;
+//  3. reenacting a synthetic 77 s test speech from that graph (the paper's longest test clip).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <sys/resource.h>
+
+#include "audio/wav.h"
+#include "engine/pipeline.h"
+#include "engine/synth.h"
+#include "graph/motion_graph.h"
+#include "tests/test_support.h"
+
+using namespace gmg;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+void print_graph(const char* what, const MotionGraph& g, double secs) {
+  const GraphStats s = graph_stats(g);
+  std::printf("%s: %d frames, %d joints: graph built in %.3f s; %ld transitions, %d onset / %d keyword / %d break nodes; "
+              "peak RSS so far %.1f MB\n",
+              what, s.frames, g.motion.joint_count(), secs, s.unnatural_edges, s.onset_nodes, s.keyword_nodes,
+              s.break_nodes, peak_rss_mb());
+}
+
+// Graph construction alone (features + continuity analysis), from clips already in memory.
+MotionGraph timed_build(const SynthClip& clip, const char* what, const Config& cfg) {
+  ClipEvents c;
+  c.name = what;
+  c.motion = clip.motion;
+  const text::Lexicon lexicon = lexicon_for(cfg.graph);
+  const SpeechEvents ev = speech_events(clip.audio, &clip.words, what, clip.motion.fps, clip.motion.frame_count, cfg.graph, lexicon);
+  c.onset_frames = ev.onset_frames;
+  c.keyword_frames = ev.keyword_frames;
+  const auto t0 = std::chrono::steady_clock::now();
+  MotionGraph g = graph_build({c}, cfg.graph);
+  print_graph(what, g, seconds_since(t0));
+  return g;
+}
+
+}  // namespace
+
+int main() {
+  const Config cfg;
+  const std::string data = gmg::testing::shared_data_dir();
+  if (!data.empty()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const MotionGraph g = graph_build_from_files(
+        {{data + "/beat2_scott/2_scott_0_1_1.bvh", {data + "/beat2_scott/2_scott_0_1_1.wav", data + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+        cfg);
+    print_graph("2_scott_0_1_1 (including BVH, WAV, TextGrid reading and onset detection)", g, seconds_since(t0));
+  } else {
+    std::printf("../shared/data is absent: skipping the 2_scott_0_1_1 figure\n");
+  }
+
+  SynthSpec ref;
+  ref.duration_s = 427.0;
+  ref.seed = 3;
+  ref.joint_count_hint = 25;
+  auto t0 = std::chrono::steady_clock::now();
+  const SynthClip clip = synth_speaker(ref);
+  std::printf("synthetic 427 s reference generated in %.2f s (%d frames, %d joints)\n", seconds_since(t0),
+              clip.motion.frame_count, clip.motion.joint_count());
+  const double rss_before = peak_rss_mb();
+  const MotionGraph g = timed_build(clip, "synthetic 427 s", cfg);
+  std::printf("  peak RSS grew by %.1f MB during the build\n", peak_rss_mb() - rss_before);
+
+  SynthSpec test;
+  test.duration_s = 77.0;
+  test.seed = 4;
+  test.joint_count_hint = 25;
+  const SynthClip speech = synth_speaker(test);
+  const text::Lexicon lexicon = lexicon_for(cfg.graph);
+  t0 = std::chrono::steady_clock::now();
+  const SpeechEvents ev = speech_events(speech.audio, &speech.words, "test", g.motion.fps, -1, cfg.graph, lexicon);
+  const double analyse = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  const Reenactment r = reenact_events(g, ev, cfg);
+  const double search = seconds_since(t0);
+  std::printf("reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
+              "search + blending %.3f s, total %.3f s (one core)\n",
+              ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
+  std::printf("  fallbacks: %s, failures %d\n", r.report["totals"]["fallbacks"].dump().c_str(), r.plan.failures);
+  return 0;
+}
