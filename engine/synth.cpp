@@ -266,7 +266,6 @@ struct Plan {
   std::vector<text::Word> words;
   std::vector<bool> word_is_keyword;
   std::vector<SynthSyllable> syllables;
-  std::vector<double> syllable_length;  // slot length of each syllable (time to the next one)
   std::vector<SynthPhrase> phrases;
   std::vector<double> keyword_times;
 };
@@ -276,15 +275,14 @@ Plan plan_speech(double duration, double style, Rng& rng) {
   const double end_limit = duration - 0.15;  // the last word ends at least 150 ms before the end
   double t = rng.uniform(0.4, 0.9);          // lead-in silence
   int previous_kind = 0;                     // 0 content, 1 function, 2 keyword
-  int previous_keyword = -1;
   while (t + 0.6 <= end_limit) {
     const double target_end = std::min(t + rng.uniform(1.5, 4.0), end_limit);
-    const double rate = std::clamp(4.0 + 1.0 * style + rng.uniform(-0.25, 0.25), 3.8, 5.2);
+    const double rate = std::clamp(4.3 + 0.7 * style + rng.uniform(-0.25, 0.25), 4.0, 5.2);
     double cur = t;
     const std::size_t first_word = plan.words.size();
     for (;;) {
       // Pick a word: a function word ~30% (never two in a row), a keyword ~15% (never two in a
-      // row, so every keyword is its own keyword event), otherwise a content word.
+      // row, so every keyword is its own keyword event and gesture), otherwise a content word.
       const double r = rng.uniform();
       int kind;
       if (r < 0.17 && previous_kind != 2)
@@ -294,11 +292,8 @@ Plan plan_speech(double duration, double style, Rng& rng) {
       else
         kind = 0;
       const VocabWord* w;
-      int keyword_id = -1;
       if (kind == 2) {
-        keyword_id = rng.below(count_of(kKeywords));
-        if (keyword_id == previous_keyword) keyword_id = (keyword_id + 1) % count_of(kKeywords);
-        w = &kKeywords[keyword_id];
+        w = &kKeywords[rng.below(count_of(kKeywords))];
       } else if (kind == 1) {
         w = &kFunction[rng.below(count_of(kFunction))];
       } else {
@@ -321,7 +316,6 @@ Plan plan_speech(double duration, double style, Rng& rng) {
         syl.stressed = s == w->stress;
         syl.word = word_index;
         plan.syllables.push_back(syl);
-        plan.syllable_length.push_back(lengths[static_cast<std::size_t>(s)]);
         s_time = round_ms(s_time + lengths[static_cast<std::size_t>(s)]);
       }
       text::Word word;
@@ -332,15 +326,14 @@ Plan plan_speech(double duration, double style, Rng& rng) {
       plan.word_is_keyword.push_back(kind == 2);
       if (kind == 2) plan.keyword_times.push_back(word.start);
       previous_kind = kind;
-      previous_keyword = keyword_id;
-      cur = s_time + round_ms(rng.uniform(0.0, 0.04));  // short inter-word gap
+      cur = s_time + round_ms(rng.uniform(0.0, 0.03));  // short inter-word gap
     }
     if (plan.words.size() == first_word) break;
     SynthPhrase ph;
     ph.start = plan.words[first_word].start;
     ph.end = plan.words.back().end;
     plan.phrases.push_back(ph);
-    previous_kind = 1;  // a phrase may start with anything but a function word after a pause
+    previous_kind = 1;  // so the next phrase opens with a content word or a keyword
     t = ph.end + rng.uniform(0.3, 0.8);
   }
   return plan;
@@ -427,6 +420,19 @@ void add_bump(std::vector<double>& curve, double fps, double center, double widt
   for (int f = f0; f <= f1; ++f) curve[static_cast<std::size_t>(f)] += amplitude * bump(f / fps, center, width);
 }
 
+// Adds amplitude * (a half raised cosine rising over [start, apex], then one falling over
+// [apex, end]) to `curve`: an asymmetric bump, C1-smooth.
+void add_bump2(std::vector<double>& curve, double fps, double start, double apex, double end, double amplitude) {
+  const int n = static_cast<int>(curve.size());
+  const int f0 = std::max(0, static_cast<int>(std::floor(start * fps)));
+  const int f1 = std::min(n - 1, static_cast<int>(std::ceil(end * fps)));
+  for (int f = f0; f <= f1; ++f) {
+    const double t = f / fps;
+    const double v = t < apex ? ramp(t, start, apex) : 1.0 - ramp(t, apex, end);
+    curve[static_cast<std::size_t>(f)] += amplitude * v;
+  }
+}
+
 Motion synth_motion(const Plan& plan, const SynthSpec& spec, int frame_count, Rng& rng) {
   const Skeleton sk = synth_skeleton(spec.joint_count_hint);
   Motion m = motion_rest(sk, spec.fps, frame_count);
@@ -435,25 +441,33 @@ Motion synth_motion(const Plan& plan, const SynthSpec& spec, int frame_count, Rn
   const double style = spec.style;
 
   // Speaker style.
-  const double gain = 0.8 + 0.45 * style;           // gesture amplitude
-  const double beat_width = 0.36 - 0.08 * style;    // beat stroke duration (s)
-  const double other_hand = 0.30 + 0.30 * style;    // share of the non-dominant hand in beats
+  const double gain = 0.85 + 0.2 * style;           // gesture amplitude
+  const double beat_width = 0.36 - 0.04 * style;    // beat stroke duration (s)
+  const double other_hand = 0.50 + 0.30 * style;    // share of the non-dominant hand in beats
   const double talk_down = 62.0 - 8.0 * style;      // gesture space height (upper-arm elevation)
-  const double talk_fwd = 48.0 + 6.0 * style;
+  const double talk_fwd = 25.0 + 6.0 * style;
   const double talk_flex = 85.0 + 5.0 * style;
-  const double rest_down = 78.0, rest_fwd = 28.0, rest_flex = 55.0;
+  const double rest_down = 78.0, rest_fwd = 15.0, rest_flex = 55.0;
 
-  // Speaking envelope: rises before each phrase (preparation), falls after it (retraction).
+  // Speaking envelope S: 0 = hands at rest, 1 = hands in the gesture space. It rises before the
+  // first phrase (preparation) and falls after the last one (retraction); in every pause between
+  // phrases the hands sink part of the way back towards rest (deeper in longer pauses), slowly
+  // enough that pauses stay calmer than the beats.
   std::vector<double> speak(F, 0.0);
-  for (const SynthPhrase& ph : plan.phrases) {
-    const double r0 = ph.start - 0.45, r1 = ph.start + 0.05, d0 = ph.end, d1 = ph.end + 0.6;
-    const int f0 = std::max(0, static_cast<int>(std::floor(r0 * fps)));
-    const int f1 = std::min(frame_count - 1, static_cast<int>(std::ceil(d1 * fps)));
-    for (int f = f0; f <= f1; ++f) {
-      const double t = f / fps;
-      const double v = std::min(ramp(t, r0, r1), 1.0 - ramp(t, d0, d1));
-      speak[static_cast<std::size_t>(f)] = std::max(speak[static_cast<std::size_t>(f)], v);
+  if (!plan.phrases.empty()) {
+    const double r0 = plan.phrases.front().start - 0.7, r1 = plan.phrases.front().start + 0.05;
+    const double d0 = plan.phrases.back().end, d1 = plan.phrases.back().end + 0.8;
+    for (std::size_t f = 0; f < F; ++f) {
+      const double t = static_cast<double>(f) / fps;
+      speak[f] = std::min(ramp(t, r0, r1), 1.0 - ramp(t, d0, d1));
     }
+    std::vector<double> dip(F, 0.0);
+    for (std::size_t k = 0; k + 1 < plan.phrases.size(); ++k) {
+      const double a = plan.phrases[k].end, b = plan.phrases[k + 1].start;
+      const double depth = 0.5 * std::clamp((b - a - 0.2) / 0.6, 0.0, 1.0);
+      add_bump(dip, fps, 0.5 * (a + b), (b - a) + 0.8, depth);
+    }
+    for (std::size_t f = 0; f < F; ++f) speak[f] = std::max(0.0, speak[f] - dip[f]);
   }
 
   // Beats on stressed syllables, nods with them, jaw with every syllable.
@@ -462,15 +476,23 @@ Motion synth_motion(const Plan& plan, const SynthSpec& spec, int frame_count, Rn
     const SynthSyllable& syl = plan.syllables[i];
     add_bump(jaw, fps, syl.time + 0.06, 0.2, syl.stressed ? 1.0 : 0.6);
     if (!syl.stressed) continue;
+    // On a keyword the emphasis gesture below replaces the beat (and the nod stays).
+    const bool on_keyword = plan.word_is_keyword[static_cast<std::size_t>(syl.word)];
+    add_bump(nod, fps, syl.time + 0.04, 0.4, rng.uniform(0.5, 1.0));
+    if (on_keyword) continue;
     const double a = rng.uniform(0.7, 1.15);
     const double w = beat_width * rng.uniform(0.9, 1.1);
     add_bump(beat, fps, syl.time + 0.02, w, a);
     add_bump(beat_other, fps, syl.time + 0.03, w * 1.1, a * rng.uniform(0.6, 1.0));
-    add_bump(nod, fps, syl.time + 0.04, 0.4, rng.uniform(0.5, 1.0));
   }
   // Emphasis gestures on keywords.
   std::vector<double> emph(F, 0.0);
-  for (double kt : plan.keyword_times) add_bump(emph, fps, kt + 0.12, rng.uniform(0.7, 1.0), rng.uniform(0.8, 1.1));
+  // Preparation from 0.2 s before the keyword, stroke (apex) just after its start, a slower
+  // retraction.
+  for (double kt : plan.keyword_times) {
+    const double apex = kt + rng.uniform(0.15, 0.25);
+    add_bump2(emph, fps, kt - 0.2, apex, apex + rng.uniform(0.5, 0.7), rng.uniform(0.8, 1.1));
+  }
   // Soft cap, so overlapping gestures do not add up without bound (smooth: tanh).
   for (double& e : emph) e = std::tanh(e) / std::tanh(1.0);
   for (double& b : beat) b = std::tanh(b) / std::tanh(1.0);
@@ -546,13 +568,13 @@ Motion synth_motion(const Plan& plan, const SynthSpec& spec, int frame_count, Rn
       double flex = rest_flex + S * (talk_flex - lower - rest_flex) + 8.0 * S * arm_flex[side](t);
       double wrist = 5.0 * S;
       // Beat: the forearm and hand drop and come back up.
-      flex -= 17.0 * b;
-      down += 3.0 * b;
-      wrist -= 16.0 * b;
+      flex -= 11.0 * b;
+      down += 2.0 * b;
+      wrist -= 12.0 * b;
       // Emphasis: both arms rise and open out to the sides, the forearms extend.
-      down -= 20.0 * gain * E;
-      fwd -= 20.0 * gain * E;
-      flex -= 30.0 * gain * E;
+      down -= 12.0 * gain * E;
+      fwd -= 14.0 * gain * E;
+      flex -= 18.0 * gain * E;
       wrist += 10.0 * gain * E;
       set(shoulder[side], rz(s * (4.0 * gain * E + 1.0 * b)));
       // Upper arm: elevation `down` from the T-pose, then swung forward by `fwd` about vertical.
