@@ -219,6 +219,7 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
   const int channels = sk.channel_count();
   m.rotations.resize(static_cast<std::size_t>(m.frame_count) * joints);
   m.translations.resize(static_cast<std::size_t>(m.frame_count) * joints);
+  m.euler_hints.resize(static_cast<std::size_t>(m.frame_count) * joints);
 
   std::size_t pos = tok.pos();
   if (pos < text.size() && text[pos] == '\n') ++pos;
@@ -248,6 +249,7 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
           }
         }
         m.rotations[m.index(frame, j)] = euler_to_quat(angles, joint.rotation_order);
+        m.euler_hints[m.index(frame, j)] = angles;
         m.translations[m.index(frame, j)] = translation;
       }
       ++frame;
@@ -308,7 +310,9 @@ std::string bvh_format(const Motion& m) {
     for (int j = 0; j < joints; ++j) {
       const Joint& joint = sk.joints[j];
       if (joint.channels.empty()) continue;
-      const glm::dvec3 angles = quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
+      const bool hinted = !m.euler_hints.empty();
+      const glm::dvec3 angles = hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order, m.euler_hints[m.index(f, j)])
+                                       : quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
       previous[j] = angles;
       const glm::dvec3& t = m.translation(f, j);
       int rot_index = 0;

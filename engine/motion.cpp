@@ -74,6 +74,9 @@ Motion motion_slice(const Motion& m, int from, int to) {
                        m.rotations.begin() + static_cast<std::ptrdiff_t>(m.index(to, 0)));
   out.translations.assign(m.translations.begin() + static_cast<std::ptrdiff_t>(m.index(from, 0)),
                           m.translations.begin() + static_cast<std::ptrdiff_t>(m.index(to, 0)));
+  if (!m.euler_hints.empty())
+    out.euler_hints.assign(m.euler_hints.begin() + static_cast<std::ptrdiff_t>(m.index(from, 0)),
+                           m.euler_hints.begin() + static_cast<std::ptrdiff_t>(m.index(to, 0)));
   return out;
 }
 

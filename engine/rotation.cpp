@@ -89,6 +89,26 @@ glm::dvec3 quat_to_euler_near(const glm::dquat& q, const EulerOrder& order, cons
   return distance(second) < distance(first) ? second : first;
 }
 
+glm::dvec3 quat_to_euler_matching(const glm::dquat& q, const EulerOrder& order, const glm::dvec3& reference) {
+  const glm::dvec3 first = quat_to_euler(q, order);
+  const glm::dvec3 second(first[0] + kPi, kPi - first[1], first[2] + kPi);
+  glm::dvec3 best(0.0);
+  double best_distance = -1.0;
+  for (const glm::dvec3& candidate : {first, second}) {
+    glm::dvec3 wrapped;
+    double d = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      wrapped[a] = wrap_near(candidate[a], reference[a]);
+      d += std::abs(wrapped[a] - reference[a]);
+    }
+    if (best_distance < 0.0 || d < best_distance) {
+      best = wrapped;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
 glm::dquat expmap_to_quat(const glm::dvec3& v) {
   const double angle = glm::length(v);
   if (angle < 1e-8) {

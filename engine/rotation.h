@@ -34,6 +34,10 @@ glm::dvec3 quat_to_euler(const glm::dquat& q, const EulerOrder& order);
 // flip between the two solution branches from frame to frame.
 glm::dvec3 quat_to_euler_near(const glm::dquat& q, const EulerOrder& order, const glm::dvec3& previous);
 
+// The Euler solution of q (of the two, with 2*pi shifts per angle) nearest `reference`. Used to
+// write back angles read from a file exactly as the file had them.
+glm::dvec3 quat_to_euler_matching(const glm::dquat& q, const EulerOrder& order, const glm::dvec3& reference);
+
 // Exponential map (axis * angle, radians) <-> quaternion. quat_to_expmap returns the angle in [0, pi].
 glm::dquat expmap_to_quat(const glm::dvec3& v);
 glm::dvec3 quat_to_expmap(const glm::dquat& q);
