@@ -22,8 +22,14 @@ TEST(Ablation, FiveSetupsScoredOverSeeds) {
   for (const AblationRow& r : rows) {
     ASSERT_EQ(r.syn.size(), 2u);
     for (double v : r.syn) EXPECT_GT(v, 0.0);
-    for (double v : r.div) EXPECT_GE(v, 0.0), EXPECT_LE(v, 1.0);
-    for (double v : r.bc) EXPECT_GE(v, 0.0), EXPECT_LE(v, 1.0);
+    for (double v : r.div) {
+      EXPECT_GE(v, 0.0);
+      EXPECT_LE(v, 1.0);
+    }
+    for (double v : r.bc) {
+      EXPECT_GE(v, 0.0);
+      EXPECT_LE(v, 1.0);
+    }
   }
   for (int f : rows[4].failures) EXPECT_EQ(f, 0);  // the full system never fails
   const std::string md = ablation_markdown(rows);
