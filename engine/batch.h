@@ -47,7 +47,8 @@
 //   (the reenactment report, with --reports), OUTDIR/pairs.csv (test_stem,reference_stem; written
 //   before any clip starts), OUTDIR/summary.csv and OUTDIR/summary.json (written at the end).
 //   A clip whose BVH exists is skipped unless --force (its reference in pairs.csv is the one the
-//   previous pairs.csv recorded, when it did). Stale temporary files of a killed run (of a
+//   previous pairs.csv recorded, when it did; its frames, fallbacks, failures and seconds in the
+//   summary are the previous summary.json's, when it recorded them). Stale temporary files of a killed run (of a
 //   process no longer alive) are removed.
 // - A clip that cannot be made (unreadable input, broken reference, ...) fails with its error
 //   text in the summary; the others complete.
@@ -82,8 +83,9 @@ struct BatchOptions {
   std::vector<std::string> test_dirs;        // --tests DIR (repeatable)
   std::vector<std::string> test_manifests;   // --test-manifest CSV (repeatable)
   std::string output_dir;                    // -o OUTDIR (created when missing)
-  std::string pairing = "random";            // "random" or "manifest"
-  std::string pairs_manifest;                // --manifest pairs.csv (implies pairing manifest)
+  std::string pairing;                       // "random", "manifest", or "" = manifest when
+                                             // pairs_manifest is set, else random
+  std::string pairs_manifest;                // --manifest pairs.csv
   std::string blacklist;                     // --blacklist FILE ("" = none)
   std::optional<std::uint64_t> seed;         // --seed: pairing draw and reenactment; unset = config.seed
   int jobs = 0;                              // --jobs: worker threads; 0 = all cores
@@ -100,7 +102,8 @@ struct BatchClipResult {
   std::string status;        // "ok", "failed", "skipped" (output existed) or "cancelled"
   int frames = 0, fallbacks = 0, failures = 0;  // from the reenactment report's totals
   double seconds = 0;        // this clip's own work (speech analysis, search, writing); not the
-                             // graph build and not time spent waiting for it
+                             // graph build and not time spent waiting for it. For a skipped clip,
+                             // frames..seconds are the previous run's (0 when unknown).
   bool skipped_existing = false;
 };
 

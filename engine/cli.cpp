@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "engine/ablation.h"
+#include "engine/batch.h"
 #include "engine/bvh.h"
 #include "engine/error.h"
 #include "engine/evaluate.h"
@@ -197,6 +198,9 @@ int cli_main(int argc, char** argv) {
       std::cout << j.dump(2) << "\n";
     }
   });
+
+  // ---- batch ----
+  add_batch_command(app, &exit_code);
 
   // ---- ablation ----
   auto* abl = app.add_subcommand("ablation", "the paper's Table 2: split one recording in time, score five setups");
