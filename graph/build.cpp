@@ -62,7 +62,7 @@ namespace {
 // Candidate right frames of one left frame, in frame order.
 struct Candidate {
   int to;
-  double weight;
+  double weight;  // filled in only for the edges that survive pruning
 };
 
 // The exact distance test of every pair, organised so that it never holds an N x N matrix:
@@ -77,6 +77,8 @@ class DistanceFilter {
     const Eigen::Index dims = f.positions.cols();
     pos_t_ = f.positions.transpose();
     vel_t_ = f.velocities.transpose();
+    pos_tf_ = pos_t_.cast<float>();
+    vel_tf_ = vel_t_.cast<float>();
     Eigen::MatrixXd z(n, 2 * dims);
     z << params.lambda_pos * f.positions, params.lambda_vel * f.velocities;
     const Eigen::RowVectorXd mean = z.colwise().mean();
@@ -100,8 +102,15 @@ class DistanceFilter {
            params_.lambda_vel * (vel_t_.col(l) - vel_t_.col(r)).norm();
   }
 
+  // d(l, r) in single precision: half the memory traffic and twice the SIMD width of exact().
+  float approximate(int l, int r) const {
+    return static_cast<float>(params_.lambda_pos) * (pos_tf_.col(l) - pos_tf_.col(r)).norm() +
+           static_cast<float>(params_.lambda_vel) * (vel_tf_.col(l) - vel_tf_.col(r)).norm();
+  }
+
   // Appends to out[i] the frames r (ascending, r != l, allowed(l, r)) with d(l, r) <= theta[i]
-  // for l = first + i.
+  // for l = first + i. The test runs in float; only values within 1e-4 of the threshold are
+  // decided in double, so the result is the exact one. Weights are left for the caller.
   template <typename Allowed>
   void within(int first, int count, const std::vector<double>& theta, const Allowed& allowed,
               std::vector<std::vector<Candidate>>& out) const {
@@ -120,8 +129,10 @@ class DistanceFilter {
         const float bound2 = sum - 2.0f * gram(i, r);
         if (bound2 > t2 + 1e-4f * sum + 1e-12f) continue;
         if (r == l || !allowed(l, r)) continue;
-        const double d = exact(l, r);
-        if (d <= t) out[static_cast<std::size_t>(i)].push_back({r, d});
+        const float approx = approximate(l, r);
+        if (approx > static_cast<float>(t) * (1.0f + 1e-4f) + 1e-12f) continue;
+        if (approx >= static_cast<float>(t) * (1.0f - 1e-4f) && exact(l, r) > t) continue;
+        out[static_cast<std::size_t>(i)].push_back({r, 0.0});
       }
     }
   }
@@ -130,6 +141,7 @@ class DistanceFilter {
   static constexpr Eigen::Index kProjectedDims = 24;
   const GraphParams& params_;
   Eigen::MatrixXd pos_t_, vel_t_;
+  Eigen::MatrixXf pos_tf_, vel_tf_;
   Eigen::MatrixXf projected_, projected_t_;
   Eigen::VectorXf norms_;
 };
@@ -155,12 +167,16 @@ class EdgeIndex {
   explicit EdgeIndex(int n) : targets_(static_cast<std::size_t>(n)) {}
   void add(int a, int b) { targets_[static_cast<std::size_t>(a)].push_back(b); }
 
-  // True when an edge a -> b exists with a in [a_lo, a_hi] and b in [b_lo, b_hi].
+  // True when an edge a -> b exists with a in [a_lo, a_hi] and b in [b_lo, b_hi]. Each
+  // source's targets are added in ascending order (survivors of one left frame come sorted),
+  // so a binary search per source answers it.
   bool any(int a_lo, int a_hi, int b_lo, int b_hi) const {
     const int n = static_cast<int>(targets_.size());
-    for (int a = std::max(0, a_lo); a <= std::min(n - 1, a_hi); ++a)
-      for (int b : targets_[static_cast<std::size_t>(a)])
-        if (b >= b_lo && b <= b_hi) return true;
+    for (int a = std::max(0, a_lo); a <= std::min(n - 1, a_hi); ++a) {
+      const std::vector<int>& t = targets_[static_cast<std::size_t>(a)];
+      const auto it = std::lower_bound(t.begin(), t.end(), b_lo);
+      if (it != t.end() && *it <= b_hi) return true;
+    }
     return false;
   }
 
@@ -233,7 +249,7 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
       }
       for (const Candidate& c : survivors) {
         index.add(l, c.to);
-        edges.push_back({l, c.to, c.weight});
+        edges.push_back({l, c.to, filter.exact(l, c.to)});
       }
     }
   }
