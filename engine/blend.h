@@ -16,11 +16,17 @@ double blend_weight(int i, int n, const std::string& curve);
 // (SLERP for rotations, linear for translations between neighbouring path frames).
 Motion resample_path(const Motion& source, const std::vector<int>& path, int length);
 
-// Concatenates pieces (same skeleton), blending every junction: the last L_l = min(l_blend,
-// len(left)) frames of the result so far and the first L_r = min(l_blend, len(right)) frames of
-// the right piece become L_l + L_r frames that cross-fade "left, then its last frame held" into
-// "right's first frame held, then right". The blended frames start at the left content and end
-// at the right content, so the junction has no jump; the total frame count is the sum.
+// Concatenates pieces (same skeleton), blending every junction over the last L_l =
+// min(l_blend, len(left)) frames of the result so far and the first L_r = min(l_blend,
+// len(right)) frames of the right piece. The total frame count is the sum of the pieces'.
+//  - mode "offset": the excess E = right's first frame - (left's last frame advanced by the
+//    mean of the two pieces' boundary velocities) is spread over the window: left frames k get
+//    w_k E added, right frames -(1 - w_k) E (rotations: E^w left-multiplied, by SLERP from the
+//    identity). With linear weights every step grows by E / (L_l + L_r + 1); E = 0 changes
+//    nothing.
+//  - mode "crossfade": SPEC's cross-fade of "left, then its last frame held" into "right's first
+//    frame held, then right" with weights rising from 0 to 1.
+// Rotations always take the short arc; translations blend linearly.
 Motion blend_concatenate(const std::vector<Motion>& pieces, const BlendParams& params);
 
 }  // namespace gmg

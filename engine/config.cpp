@@ -123,6 +123,7 @@ const std::vector<Accessor>& accessors() {
       int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search, &SearchParams::ignore_rounds),
       int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
       string_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve),
+      string_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)", &Config::blend, &BlendParams::mode),
       {{"seed", "seed of every random choice"},
        [](Config& c, const std::string& v) {
          const long long x = parse_int("seed", v);
@@ -233,6 +234,7 @@ void config_validate(const Config& c) {
   require(c.search.ignore_rounds >= 1, "ignore_rounds must be >= 1");
   require(c.blend.l_blend >= 0, "l_blend must be >= 0");
   require(c.blend.curve == "linear" || c.blend.curve == "sigmoid", "blend_curve must be 'linear' or 'sigmoid'");
+  require(c.blend.mode == "offset" || c.blend.mode == "crossfade", "blend_mode must be 'offset' or 'crossfade'");
 }
 
 }  // namespace gmg

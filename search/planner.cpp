@@ -89,8 +89,10 @@ class Planner {
     return out;
   }
 
-  // Up to 1 + retries beam searches for one request. The first may start from `first_starts`.
-  BeamResult attempts(std::size_t k, BeamRequest request, const std::vector<int>& first_starts, int* retries) {
+  // Up to 1 + retries beam searches for one request. The first may start from `first_starts`;
+  // *from_first tells whether the accepted one was that first search.
+  BeamResult attempts(std::size_t k, BeamRequest request, const std::vector<int>& first_starts, int* retries,
+                      bool* from_first = nullptr) {
     int round = 0;
     for (int attempt = 0; attempt <= params_.retries; ++attempt) {
       if (attempt == 0 && !first_starts.empty()) {
@@ -100,7 +102,10 @@ class Planner {
       }
       if (attempt > 0) ++*retries;
       BeamResult r = beam_search(g_, request, params_);
-      if (r.accepted) return r;
+      if (r.accepted) {
+        if (from_first) *from_first = attempt == 0 && !first_starts.empty();
+        return r;
+      }
     }
     return BeamResult{};
   }
@@ -122,9 +127,7 @@ class Planner {
     request.keyword = seg.sub.keyword;
     std::vector<int> continuation;
     if (previous_clean && !previous_path.empty()) continuation = successors(previous_path.back());
-    seg.continued = !continuation.empty();
-
-    BeamResult r = attempts(k, request, continuation, &seg.retries);
+    BeamResult r = attempts(k, request, continuation, &seg.retries, &seg.continued);
     if (r.accepted) {
       accept(seg, r);
       return seg;

@@ -31,7 +31,7 @@ struct PlannedSegment {
   Fallback fallback = Fallback::None;
   int retries = 0;              // beam searches beyond the first
   double cost = 0.0;            // cost of the accepted path (0 otherwise)
-  bool continued = false;       // first attempt started from the previous path's successors
+  bool continued = false;       // the accepted path started from the previous path's successors
 };
 
 struct Plan {
