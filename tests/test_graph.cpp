@@ -6,6 +6,7 @@
 
 #include "engine/error.h"
 #include "engine/file_util.h"
+#include "engine/pipeline.h"
 #include "graph/motion_graph.h"
 #include "tests/test_support.h"
 
@@ -267,6 +268,41 @@ TEST(Graph, ExportsDotAndGraphml) {
   EXPECT_NE(xml.find("<graphml"), std::string::npos);
   EXPECT_NE(xml.find("keyword"), std::string::npos);
   EXPECT_THROW(graph_write_dot(dir.file("x.dot"), g, 50, 500), Error);
+}
+
+}  // namespace
+}  // namespace gmg
+
+namespace gmg {
+namespace {
+
+TEST(GraphRealData, ScottHasOnsetAndKeywordNodesZeggsOnsetAndBreakOnly) {
+  GMG_REQUIRE_SHARED_DATA();
+  const std::string d = gmg::testing::shared_data_dir();
+  Config cfg;
+  const MotionGraph scott = graph_build_from_files(
+      {{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+      cfg);
+  const GraphStats s = graph_stats(scott);
+  EXPECT_EQ(s.frames, 1906);
+  EXPECT_EQ(s.onset_nodes, 115);  // librosa's count for this recording (reference_onsets)
+  EXPECT_GT(s.keyword_nodes, 20);
+  EXPECT_GE(s.break_nodes, 1);
+  EXPECT_GT(s.unnatural_edges, 0);
+  const MotionGraph zeggs = graph_build_from_files(
+      {{d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}}, cfg);
+  const GraphStats z = graph_stats(zeggs);
+  EXPECT_EQ(z.frames, 2065);
+  EXPECT_EQ(z.keyword_nodes, 0);
+  EXPECT_GT(z.onset_nodes, 120);  // librosa finds 130, a few fall past the last motion frame
+  EXPECT_LE(z.onset_nodes, 130);
+  EXPECT_GE(z.break_nodes, 1);
+  EXPECT_TRUE(zeggs.node(2064).kinds & kBreakNode);
+  // Two clips with different skeletons cannot share a graph.
+  EXPECT_THROW(graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", ""}},
+                                       {d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}},
+                                      cfg),
+               Error);
 }
 
 }  // namespace
