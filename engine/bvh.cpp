@@ -91,21 +91,6 @@ bool parse_channel(const std::string& t, Channel* out) {
   return false;
 }
 
-// Rotation order from the channel list: listed rotation axes first, missing axes after.
-EulerOrder rotation_order_of(const std::vector<Channel>& channels) {
-  EulerOrder order{};
-  bool used[3] = {false, false, false};
-  int n = 0;
-  for (Channel c : channels)
-    if (!is_position_channel(c)) {
-      order[n++] = channel_axis(c);
-      used[channel_axis(c)] = true;
-    }
-  for (int axis = 0; axis < 3; ++axis)
-    if (!used[axis]) order[n++] = axis;
-  return order;
-}
-
 void parse_joint(Tokenizer& tok, Skeleton& sk, int parent) {
   Joint joint;
   joint.parent = parent;
@@ -135,7 +120,7 @@ void parse_joint(Tokenizer& tok, Skeleton& sk, int parent) {
     }
     t = tok.expect_any("JOINT, End Site or }");
   }
-  joint.rotation_order = rotation_order_of(joint.channels);
+  joint.rotation_order = rotation_order_from_channels(joint.channels);
   const int index = sk.joint_count();
   sk.joints.push_back(joint);
   while (t != "}") {

@@ -18,6 +18,20 @@ const char* channel_name(Channel c) {
   return "?";
 }
 
+EulerOrder rotation_order_from_channels(const std::vector<Channel>& channels) {
+  EulerOrder order{};
+  bool used[3] = {false, false, false};
+  int n = 0;
+  for (Channel c : channels)
+    if (!is_position_channel(c) && !used[channel_axis(c)]) {
+      order[n++] = channel_axis(c);
+      used[channel_axis(c)] = true;
+    }
+  for (int axis = 0; axis < 3; ++axis)
+    if (!used[axis]) order[n++] = axis;
+  return order;
+}
+
 int Skeleton::channel_count() const {
   int n = 0;
   for (const Joint& j : joints) n += static_cast<int>(j.channels.size());

@@ -22,6 +22,10 @@ const char* channel_name(Channel c);
 inline bool is_position_channel(Channel c) { return c <= Channel::Zposition; }
 inline int channel_axis(Channel c) { return static_cast<int>(c) % 3; }
 
+// Rotation order of a channel list: the listed rotation axes (outermost first), then any
+// missing axes.
+EulerOrder rotation_order_from_channels(const std::vector<Channel>& channels);
+
 struct Joint {
   std::string name;
   int parent = -1;                  // index of the parent joint; -1 only for the root; always < own index

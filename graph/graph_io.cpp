@@ -172,18 +172,7 @@ MotionGraph read_payload(Reader& r) {
       if (c > 5) r.fail("unknown channel");
       j.channels.push_back(static_cast<Channel>(c));
     }
-    // Rotation order follows from the channels exactly as in the BVH reader.
-    EulerOrder order{};
-    bool used[3] = {false, false, false};
-    int n = 0;
-    for (Channel c : j.channels)
-      if (!is_position_channel(c) && !used[channel_axis(c)]) {
-        order[n++] = channel_axis(c);
-        used[channel_axis(c)] = true;
-      }
-    for (int axis = 0; axis < 3; ++axis)
-      if (!used[axis]) order[n++] = axis;
-    j.rotation_order = order;
+    j.rotation_order = rotation_order_from_channels(j.channels);
     j.has_end_site = r.pod<std::uint8_t>() != 0;
     j.end_site = r.pod<glm::dvec3>();
     sk.joints.push_back(j);
