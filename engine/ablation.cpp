@@ -7,6 +7,7 @@
 #include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/bvh.h"
+#include "engine/cleanup.h"
 #include "engine/error.h"
 #include "engine/metrics.h"
 #include "engine/evaluate.h"
@@ -17,7 +18,8 @@ namespace gmg {
 std::vector<AblationRow> ablation_run(const std::string& motion, const std::string& audio_path, const std::string& transcript,
                                       double reference_share, const std::vector<std::uint64_t>& seeds, const Config& base) {
   if (!(reference_share > 0.1 && reference_share < 0.9)) throw Error("ablation: the reference share must be in (0.1, 0.9)");
-  const Motion whole = bvh_read(motion);
+  Motion whole = bvh_read(motion);
+  motion_lock_and_smooth(whole, base.cleanup.lock_joints, base.cleanup.smooth_window, base.cleanup.smooth_order, motion);
   const audio::Audio sound = audio::read_wav(audio_path);
   std::vector<text::Word> words;
   if (!transcript.empty()) words = text::read_transcript(transcript);

@@ -124,6 +124,15 @@ const std::vector<Accessor>& accessors() {
       int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
       string_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve),
       string_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)", &Config::blend, &BlendParams::mode),
+      {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
+       [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_list(v); },
+       [](const Config& c) {
+         std::string s;
+         for (const std::string& j : c.cleanup.lock_joints) s += (s.empty() ? "" : ",") + j;
+         return s;
+       }},
+      int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup, &CleanupParams::smooth_window),
+      int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order),
       {{"seed", "seed of every random choice"},
        [](Config& c, const std::string& v) {
          const long long x = parse_int("seed", v);
@@ -196,6 +205,8 @@ std::string config_to_json(const Config& config) {
     const std::string v = a.get(config);
     if (a.key.name == "w_full") {
       j[a.key.name] = config.search.w_full;
+    } else if (a.key.name == "lock_joints") {
+      j[a.key.name] = config.cleanup.lock_joints;
     } else if (a.key.name == "seed") {
       j[a.key.name] = config.seed;
     } else if (v == "true" || v == "false") {
@@ -232,6 +243,9 @@ void config_validate(const Config& c) {
   require(c.search.max_length_factor >= 1.1, "max_length_factor must be >= 1.1");
   require(c.search.init == "feature" || c.search.init == "random", "init must be 'feature' or 'random'");
   require(c.search.ignore_rounds >= 1, "ignore_rounds must be >= 1");
+  require(c.cleanup.smooth_window >= 3 && c.cleanup.smooth_window % 2 == 1, "smooth_window must be odd and >= 3");
+  require(c.cleanup.smooth_order >= 0 && c.cleanup.smooth_order < c.cleanup.smooth_window,
+          "smooth_order must be >= 0 and below smooth_window");
   require(c.blend.l_blend >= 0, "l_blend must be >= 0");
   require(c.blend.curve == "linear" || c.blend.curve == "sigmoid", "blend_curve must be 'linear' or 'sigmoid'");
   require(c.blend.mode == "offset" || c.blend.mode == "crossfade", "blend_mode must be 'offset' or 'crossfade'");

@@ -64,10 +64,19 @@ struct BlendParams {
   std::string mode = "offset";
 };
 
+struct CleanupParams {
+  // Reference clips' joints whose yaw and pitch are locked and roll smoothed (engine/cleanup.h);
+  // empty = off, the default. The paper's GENEA 2023 setup names the four wrist joints.
+  std::vector<std::string> lock_joints;
+  int smooth_window = 15;  // Savitzky-Golay window (odd), the paper's value
+  int smooth_order = 3;    // Savitzky-Golay polynomial order, the paper's value
+};
+
 struct Config {
   GraphParams graph;
   SearchParams search;
   BlendParams blend;
+  CleanupParams cleanup;
   std::uint64_t seed = 20231009;    // default seed (the paper's conference date)
 };
 

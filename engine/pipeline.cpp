@@ -8,6 +8,7 @@
 #include "audio/wav.h"
 #include "engine/blend.h"
 #include "engine/bvh.h"
+#include "engine/cleanup.h"
 #include "engine/error.h"
 #include "search/segmentation.h"
 
@@ -63,6 +64,8 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     ClipEvents in;
     in.name = c.motion;
     in.motion = bvh_read(c.motion);
+    motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
+                           config.cleanup.smooth_order, c.motion);
     if (!inputs.empty()) {
       std::string why;
       if (!skeletons_match(inputs.front().motion.skeleton, in.motion.skeleton, &why))
