@@ -118,6 +118,16 @@ class Planner {
     if (it != keys_.end() && *it == r.path.front()) ++occurrences_[static_cast<std::size_t>(it - keys_.begin())];
   }
 
+  // A fallback's searches (each one counts as a retry); on success records it in seg.
+  bool try_fallback(std::size_t k, const BeamRequest& request, Fallback fallback, PlannedSegment& seg) {
+    const BeamResult r = attempts(k, request, {}, &seg.retries);
+    ++seg.retries;
+    if (!r.accepted) return false;
+    seg.fallback = fallback;
+    accept(seg, r);
+    return true;
+  }
+
   PlannedSegment plan_one(std::size_t k, const std::vector<int>& previous_path, bool previous_clean) {
     PlannedSegment seg;
     seg.sub = subs_[k];
@@ -137,13 +147,7 @@ class Planner {
       if (request.kind == Termination::Keyword) {
         request.kind = Termination::Rhythm;
         request.keyword.clear();
-        r = attempts(k, request, {}, &seg.retries);
-        ++seg.retries;
-        if (r.accepted) {
-          seg.fallback = Fallback::KeywordToRhythm;
-          accept(seg, r);
-          return seg;
-        }
+        if (try_fallback(k, request, Fallback::KeywordToRhythm, seg)) return seg;
       }
       // 2: paths stop too early: ignore a growing share of the stopping nodes.
       for (int round = 1; round <= params_.ignore_rounds; ++round) {
@@ -151,13 +155,7 @@ class Planner {
         request.ignore_stop.assign(static_cast<std::size_t>(g_.frame_count()), 0);
         for (int f : keys_)
           if (static_cast<double>(rng_() >> 11) * 0x1.0p-53 < share) request.ignore_stop[static_cast<std::size_t>(f)] = 1;
-        r = attempts(k, request, {}, &seg.retries);
-        ++seg.retries;
-        if (r.accepted) {
-          seg.fallback = Fallback::IgnoreStops;
-          accept(seg, r);
-          return seg;
-        }
+        if (try_fallback(k, request, Fallback::IgnoreStops, seg)) return seg;
       }
       seg.fallback = Fallback::HoldLastFrame;
     } else {
