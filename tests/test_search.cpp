@@ -447,3 +447,48 @@ TEST(RealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {
 
 }  // namespace
 }  // namespace gmg
+
+namespace gmg {
+namespace {
+
+TEST(RealData, GeneaSkeletonWithPositionChannelsOnEveryJoint) {
+  // The GENEA 2023 files have no audio: pair the motion with synthetic speech of its length.
+  GMG_REQUIRE_SHARED_DATA();
+  const std::string bvh = gmg::testing::shared_data_dir() + "/genea2023_format/sample1.bvh";
+  const Motion ref = bvh_read(bvh);
+  gmg::testing::TempDir dir;
+  SynthSpec spec;
+  spec.duration_s = ref.duration();
+  spec.seed = 8;
+  synth_write(synth_speaker(spec), dir.path().string(), "speech");
+  spec.duration_s = 12.0;
+  spec.seed = 9;
+  synth_write(synth_speaker(spec), dir.path().string(), "test");
+  Config cfg;
+  const MotionGraph g = graph_build_from_files({{bvh, {dir.file("speech.wav"), dir.file("speech.tsv")}}}, cfg);
+  EXPECT_EQ(g.frame_count(), ref.frame_count);
+  const Reenactment r = reenact(g, {dir.file("test.wav"), dir.file("test.tsv")}, cfg, "genea");
+  EXPECT_EQ(r.motion.frame_count, 360);
+  bvh_write(dir.file("out.bvh"), r.motion);
+  const Motion back = bvh_read(dir.file("out.bvh"));
+  EXPECT_TRUE(skeletons_match(back.skeleton, ref.skeleton));
+  EXPECT_EQ(back.frame_count, 360);
+  // Every output frame's translations stay within the reference's per-joint ranges (blending
+  // of position channels is linear between reference values).
+  for (int j = 0; j < ref.joint_count(); ++j) {
+    glm::dvec3 lo(1e30), hi(-1e30);
+    for (int f = 0; f < ref.frame_count; ++f) {
+      lo = glm::min(lo, ref.translation(f, j));
+      hi = glm::max(hi, ref.translation(f, j));
+    }
+    const glm::dvec3 slack = 0.25 * (hi - lo) + glm::dvec3(1e-3);
+    for (int f = 0; f < back.frame_count; f += 7) {
+      const glm::dvec3 t = back.translation(f, j);
+      EXPECT_TRUE(glm::all(glm::greaterThanEqual(t, lo - slack)) && glm::all(glm::lessThanEqual(t, hi + slack)))
+          << ref.skeleton.joints[j].name << " frame " << f;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gmg
