@@ -66,6 +66,39 @@ TEST(Continuity, HandWorkedSawtooth) {
   EXPECT_EQ(from4, (std::vector<int>{0, 1, 2, 6, 7, 8, 9}));
 }
 
+TEST(Continuity, HandWorkedPruningSteps) {
+  // Positions only (lambda_vel 0), l_cn 1, l_pn 3, 26 frames in one run:
+  //   x_0 = 0, x_1 = 1, x_2..9 = 100, x_10..17 = 0.5, x_18..25 = 100.
+  // l = 0: theta_0 = |x_0 - x_1| = 1. Candidates (|r| > 3, d <= 1): r = 10..17 (d 0.5), one run.
+  //   Pruning 1 keeps the first, drops the next l_pn - 1 = 2, keeps again: 10, 13, 16.
+  //   Pruning 2: no earlier edge. -> 0 -> {10, 13, 16}, weight 0.5 each.
+  // l = 1: theta_1 = |x_1 - x_2| = 99: every r with |r - 1| > 3 is a candidate: 5..25, one run.
+  //   Pruning 1: 5, 8, 11, 14, 17, 20, 23.
+  //   Pruning 2 (edges from a within 3 of l = 1, i.e. 0 -> {10, 13, 16}): drops r within 3 of
+  //   10, 13 or 16: 8, 11, 14, 17. The reverse test (an edge from near r to near 1) finds none.
+  //   -> 1 -> {5, 20, 23}, weights 99, 99, 99.
+  std::vector<double> x(26, 100.0);
+  x[0] = 0.0;
+  x[1] = 1.0;
+  for (int i = 10; i <= 17; ++i) x[static_cast<std::size_t>(i)] = 0.5;
+  const PoseFeatures f = line_features(x);
+  GraphParams p;
+  p.lambda_vel = 0.0;
+  p.l_cn = 1;
+  p.l_pn = 3;
+  const std::vector<Transition> edges = continuity_analysis(f, one_run(26), p);
+  std::vector<int> from0, from1;
+  std::vector<double> w0, w1;
+  for (const Transition& t : edges) {
+    if (t.from == 0) from0.push_back(t.to), w0.push_back(t.weight);
+    if (t.from == 1) from1.push_back(t.to), w1.push_back(t.weight);
+  }
+  EXPECT_EQ(from0, (std::vector<int>{10, 13, 16}));
+  EXPECT_EQ(w0, (std::vector<double>{0.5, 0.5, 0.5}));
+  EXPECT_EQ(from1, (std::vector<int>{5, 20, 23}));
+  EXPECT_EQ(w1, (std::vector<double>{99.0, 99.0, 99.0}));
+}
+
 TEST(Continuity, PruningOneKeepsOneFramePerLpnInARun) {
   // A still pose (all frames identical except the tiny drift that makes thresholds positive):
   // x_i = 1e-3 * i. Every frame is within threshold of many others, in one long run.
