@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <future>
 #include <thread>
 
 #include <Eigen/Eigenvalues>
@@ -115,19 +116,21 @@ class DistanceFilter {
   void within(int first, int count, const std::vector<double>& theta, const Allowed& allowed,
               std::vector<std::vector<Candidate>>& out) const {
     const int n = static_cast<int>(projected_.rows());
-    const Eigen::MatrixXf gram = projected_.middleRows(first, count) * projected_t_;  // count x n
+    // n x count, column-major: the products of one left frame with all frames are contiguous.
+    const Eigen::MatrixXf gram = projected_ * projected_t_.middleCols(first, count);
+    Eigen::ArrayXf bound2(n);
     for (int i = 0; i < count; ++i) {
       const int l = first + i;
       const double t = theta[static_cast<std::size_t>(i)];
       if (!(t > 0.0)) continue;
       const float nl = norms_(l);
       const float t2 = static_cast<float>(t * t);
+      // Float products carry a relative error of about 1e-6 of the norms: widen the bound by
+      // more than that so no true candidate is lost; the exact test decides. One vectorised
+      // pass computes the slack-adjusted bound of every pair, a second picks the few that pass.
+      bound2 = (nl + norms_.array()) * (1.0f - 1e-4f) - 2.0f * gram.col(i).array();
       for (int r = 0; r < n; ++r) {
-        const float sum = nl + norms_(r);
-        // Float products carry a relative error of about 1e-6 of the norms: widen the bound
-        // by more than that so no true candidate is lost; the exact test decides.
-        const float bound2 = sum - 2.0f * gram(i, r);
-        if (bound2 > t2 + 1e-4f * sum + 1e-12f) continue;
+        if (bound2(r) > t2 + 1e-12f) continue;
         if (r == l || !allowed(l, r)) continue;
         const float approx = approximate(l, r);
         if (approx > static_cast<float>(t) * (1.0f + 1e-4f) + 1e-12f) continue;
@@ -216,41 +219,50 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
   };
 
   EdgeIndex index(n);
-  const unsigned workers = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+  const int workers = static_cast<int>(std::max(1u, std::min(4u, std::thread::hardware_concurrency())));
   constexpr int kBlock = 256;
-  std::vector<std::vector<Candidate>> candidates;
-  for (int block = 0; block < n; block += kBlock * static_cast<int>(workers)) {
-    const int block_count = std::min(kBlock * static_cast<int>(workers), n - block);
-    candidates.assign(static_cast<std::size_t>(block_count), {});
-    // Candidates of each left frame are independent: compute them in parallel...
+  const int step = kBlock * workers;
+  using Candidates = std::vector<std::vector<Candidate>>;
+  // Candidates of each left frame are independent: a block of them is computed in parallel,
+  // `workers` threads of kBlock frames each...
+  auto compute = [&](int block) {
+    const int block_count = std::min(step, n - block);
+    Candidates candidates(static_cast<std::size_t>(block_count));
     std::vector<std::thread> threads;
-    for (unsigned w = 0; w < workers; ++w) {
-      const int first = block + static_cast<int>(w) * kBlock;
+    for (int w = 0; w < workers; ++w) {
+      const int first = block + w * kBlock;
       const int count = std::min(kBlock, block + block_count - first);
       if (count <= 0) break;
       threads.emplace_back([&, first, count] {
-        std::vector<std::vector<Candidate>> local(static_cast<std::size_t>(count));
+        Candidates local(static_cast<std::size_t>(count));
         const std::vector<double> local_theta(theta.begin() + first, theta.begin() + first + count);
         filter.within(first, count, local_theta, allowed, local);
-        for (int i = 0; i < count; ++i) candidates[static_cast<std::size_t>(first - block + i)] = std::move(local[static_cast<std::size_t>(i)]);
+        for (int i = 0; i < count; ++i)
+          candidates[static_cast<std::size_t>(first - block + i)] = std::move(local[static_cast<std::size_t>(i)]);
       });
     }
     for (std::thread& t : threads) t.join();
-    // ...but pruning 2 depends on the edges of earlier left frames: walk them in order.
-    for (int i = 0; i < block_count; ++i) {
-      const int l = block + i;
-      const std::vector<Candidate> kept = prune_runs(candidates[static_cast<std::size_t>(i)], l_pn);
-      std::vector<Candidate> survivors;
-      for (const Candidate& c : kept) {
+    return candidates;
+  };
+  // ...while pruning 2, which depends on the edges of earlier left frames, walks the previous
+  // block in order on this thread.
+  std::future<Candidates> next = std::async(std::launch::async, compute, 0);
+  for (int block = 0; block < n; block += step) {
+    const Candidates candidates = next.get();
+    if (block + step < n) next = std::async(std::launch::async, compute, block + step);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const int l = block + static_cast<int>(i);
+      for (const Candidate& c : prune_runs(candidates[i], l_pn)) {
         const int r = c.to;
         if (index.any(l - l_pn, l + l_pn, r - l_pn, r + l_pn) || index.any(r - l_pn, r + l_pn, l - l_pn, l + l_pn))
           continue;
-        survivors.push_back(c);
+        edges.push_back({l, r, filter.exact(l, r)});
       }
-      for (const Candidate& c : survivors) {
-        index.add(l, c.to);
-        edges.push_back({l, c.to, filter.exact(l, c.to)});
-      }
+      // Pruning 2 looks only at earlier left frames: this frame's survivors join the index
+      // after all of them were tested.
+      std::size_t e = edges.size();
+      while (e > 0 && edges[e - 1].from == l) --e;
+      for (; e < edges.size(); ++e) index.add(l, edges[e].to);  // ascending, as EdgeIndex needs
     }
   }
   return edges;
