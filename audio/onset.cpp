@@ -284,9 +284,8 @@ std::vector<int> onset_motion_frames(const OnsetAnalysis& a, double fps, int num
   std::vector<int> out;
   if (num_frames <= 0 || !(fps > 0.0)) return out;
   for (double t : a.onset_times()) {
-    long long f = std::llround(t * fps);
-    f = std::min<long long>(std::max<long long>(f, 0), num_frames - 1);
-    out.push_back(static_cast<int>(f));
+    const long long f = std::llround(t * fps);
+    if (f >= 0 && f < num_frames) out.push_back(static_cast<int>(f));
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

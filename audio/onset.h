@@ -57,9 +57,10 @@ OnsetAnalysis detect_onsets(const Audio& audio, const OnsetParams& params);
 // backtracking. The result's `envelope` is `envelope`.
 OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, const OnsetParams& params);
 
-// Motion frames of the onsets: round(t * fps) of every onset time, clipped to
-// [0, num_frames - 1], sorted, without duplicates. Empty when num_frames <= 0
-// or fps <= 0.
+// Motion frames of the onsets: round(t * fps) of every onset time, sorted,
+// without duplicates. Onsets outside [0, num_frames) are dropped, not clipped:
+// a reference's audio often outlasts its motion, and its trailing onsets
+// belong to no frame. Empty when num_frames <= 0 or fps <= 0.
 std::vector<int> onset_motion_frames(const OnsetAnalysis& a, double fps, int num_frames);
 
 }  // namespace gmg::audio

@@ -28,22 +28,13 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
   audio::OnsetParams onset_params;
   onset_params.min_onset_strength = params.min_onset_strength;
   const audio::OnsetAnalysis onsets = audio::detect_onsets(sound, onset_params);
-  for (double t : onsets.onset_times()) {
-    const int f = static_cast<int>(std::lround(t * fps));
-    if (f >= 0 && f < ev.total_frames) ev.onset_frames.push_back(f);
-  }
-  std::sort(ev.onset_frames.begin(), ev.onset_frames.end());
-  ev.onset_frames.erase(std::unique(ev.onset_frames.begin(), ev.onset_frames.end()), ev.onset_frames.end());
+  ev.onset_frames = audio::onset_motion_frames(onsets, fps, ev.total_frames);
 
   if (words) {
     text::check_transcript_fits(*words, ev.duration_s, name);
     ev.words = static_cast<int>(words->size());
-    for (const text::KeywordEvent& k : text::detect_keywords(*words, lexicon)) {
-      const int f = static_cast<int>(std::lround(k.time * fps));
-      if (f < 0 || f >= ev.total_frames) continue;
-      if (!ev.keyword_frames.empty() && ev.keyword_frames.back().first == f) continue;  // one per frame
-      ev.keyword_frames.emplace_back(f, k.keyword);
-    }
+    for (const text::KeywordFrame& k : text::keyword_frames(text::detect_keywords(*words, lexicon), fps, ev.total_frames))
+      ev.keyword_frames.emplace_back(k.frame, k.keyword);
   }
   return ev;
 }

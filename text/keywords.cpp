@@ -250,9 +250,8 @@ std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, do
   std::set<int> used;
   for (const KeywordEvent& e : ev) {
     double f = std::floor(e.time * fps + 0.5);
-    if (std::isnan(f)) continue;
-    f = std::clamp(f, 0.0, static_cast<double>(num_frames - 1));
-    int frame = static_cast<int>(f);
+    if (!(f >= 0.0 && f < num_frames)) continue;  // also drops NaN
+    const int frame = static_cast<int>(f);
     if (used.insert(frame).second) frames.push_back({frame, e.keyword});
   }
   std::stable_sort(frames.begin(), frames.end(),

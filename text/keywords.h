@@ -70,12 +70,13 @@ struct KeywordEvent {
 std::vector<KeywordEvent> detect_keywords(const std::vector<Word>& words, const Lexicon& lexicon);
 
 struct KeywordFrame {
-  int frame = 0;        // motion frame: round(time * fps), clipped to [0, num_frames - 1]
+  int frame = 0;        // motion frame: round(time * fps), in [0, num_frames)
   std::string keyword;  // the event's keyword
 };
 
-// Converts events to motion frames. When several events fall in the same frame only the first
-// (in the order given) is kept. The result is sorted by frame. num_frames <= 0 gives no frames;
+// Converts events to motion frames. Events outside [0, num_frames) are dropped (a transcript
+// may outlast the motion). When several events fall in the same frame only the first (in the
+// order given) is kept. The result is sorted by frame. num_frames <= 0 gives no frames;
 // a non-positive or non-finite fps is a gmg::Error.
 std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, double fps,
                                          int num_frames);
