@@ -1,6 +1,7 @@
 #include "engine/ablation.h"
 
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <numeric>
 
@@ -51,21 +52,38 @@ std::vector<AblationRow> ablation_run(const std::string& motion, const std::stri
                           {"Weak Initialization", "init=random"},
                           {"No Term. Fallback", "fallbacks=false"},
                           {"Full", ""}};
-  std::vector<AblationRow> rows;
-  for (const Setup& s : setups) {
-    Config cfg = base;
-    if (*s.set) config_set_assignment(cfg, s.set);
-    const text::Lexicon lexicon = lexicon_for(cfg.graph);
+  // The setups change at most min_onset_strength and l_pn of the graph parameters: graphs and
+  // test events are built once per distinct pair and shared by the setups that agree on it.
+  struct Prepared {
+    MotionGraph graph;
+    SpeechEvents test_events;
+  };
+  std::map<std::pair<double, int>, Prepared> prepared;
+  const text::Lexicon lexicon = lexicon_for(base.graph);
+  auto prepare = [&](const GraphParams& gp) -> const Prepared& {
+    const auto key = std::make_pair(gp.min_onset_strength, gp.l_pn);
+    auto it = prepared.find(key);
+    if (it != prepared.end()) return it->second;
     ClipEvents clip;
     clip.name = motion + " [0, " + std::to_string(split) + ")";
     clip.motion = motion_slice(whole, 0, split);
     const SpeechEvents ref_ev = speech_events(ref_audio, transcript.empty() ? nullptr : &ref_words, "reference part",
-                                              whole.fps, split, cfg.graph, lexicon);
+                                              whole.fps, split, gp, lexicon);
     clip.onset_frames = ref_ev.onset_frames;
     clip.keyword_frames = ref_ev.keyword_frames;
-    const MotionGraph g = graph_build({clip}, cfg.graph);
-    SpeechEvents test_ev = speech_events(test_audio, transcript.empty() ? nullptr : &test_words, "test part", whole.fps,
-                                         truth.frame_count, cfg.graph, lexicon);
+    Prepared p{graph_build({clip}, gp),
+               speech_events(test_audio, transcript.empty() ? nullptr : &test_words, "test part", whole.fps,
+                             truth.frame_count, gp, lexicon)};
+    return prepared.emplace(key, std::move(p)).first->second;
+  };
+
+  std::vector<AblationRow> rows;
+  for (const Setup& s : setups) {
+    Config cfg = base;
+    if (*s.set) config_set_assignment(cfg, s.set);
+    const Prepared& prep = prepare(cfg.graph);
+    const MotionGraph& g = prep.graph;
+    const SpeechEvents& test_ev = prep.test_events;
     AblationRow row;
     row.setup = s.name;
     for (std::uint64_t seed : seeds) {

@@ -1009,9 +1009,7 @@ void add_batch_command(CLI::App& app, int* exit_code) {
 
   sub->callback([st, seed_opt, exit_code] {
     try {
-      Config config;
-      if (!st->config_file.empty()) config_load_file(config, st->config_file);
-      for (const std::string& a : st->sets) config_set_assignment(config, a);
+      const Config config = config_from(st->config_file, st->sets);
       BatchOptions options = st->options;
       if (seed_opt->count() > 0) options.seed = st->seed;
       options.progress = st->progress == "lines"  ? BatchProgress::Lines

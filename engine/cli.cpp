@@ -31,11 +31,8 @@ struct ConfigOptions {
     if (with_seed) cmd->add_option("--seed", seed, "seed of every random choice");
   }
   Config make() const {
-    Config c;
-    if (!file.empty()) config_load_file(c, file);
-    for (const std::string& s : sets) config_set_assignment(c, s);
+    Config c = config_from(file, sets);
     if (seed) c.seed = *seed;
-    config_validate(c);
     return c;
   }
 };

@@ -223,6 +223,14 @@ std::string config_to_json(const Config& config) {
   return j.dump(2);
 }
 
+Config config_from(const std::string& file, const std::vector<std::string>& assignments) {
+  Config c;
+  if (!file.empty()) config_load_file(c, file);
+  for (const std::string& a : assignments) config_set_assignment(c, a);
+  config_validate(c);
+  return c;
+}
+
 void config_validate(const Config& c) {
   auto require = [](bool ok, const std::string& what) {
     if (!ok) throw Error("invalid config: " + what);

@@ -107,4 +107,8 @@ std::string config_to_json(const Config& config);
 // Checks ranges and combinations; throws gmg::Error describing the first problem.
 void config_validate(const Config& config);
 
+// The defaults, then the JSON file (when not empty), then each "key=value" in order; validated.
+// What every subcommand's --config/--set options produce.
+Config config_from(const std::string& file, const std::vector<std::string>& assignments);
+
 }  // namespace gmg
