@@ -53,6 +53,26 @@ MotionGraph timed_build(const SynthClip& clip, const char* what, const Config& c
   return g;
 }
 
+// A 25-joint (GENEA-sized) synthetic speaker of the given length.
+SynthClip synthetic_clip(double seconds, std::uint64_t seed) {
+  SynthSpec spec;
+  spec.duration_s = seconds;
+  spec.seed = seed;
+  spec.joint_count_hint = 25;
+  return synth_speaker(spec);
+}
+
+// Builds and reports the graph of a synthetic reference, with the growth of peak memory.
+MotionGraph synthetic_graph(double seconds, const Config& cfg) {
+  const SynthClip clip = synthetic_clip(seconds, 3);
+  const double before = peak_rss_mb();
+  char name[64];
+  std::snprintf(name, sizeof name, "synthetic %.1f s", seconds);
+  MotionGraph g = timed_build(clip, name, cfg);
+  std::printf("  peak RSS grew by %.1f MB during the build\n", peak_rss_mb() - before);
+  return g;
+}
+
 }  // namespace
 
 int main() {
@@ -70,36 +90,12 @@ int main() {
 
   // Memory must grow linearly with frames: a half-length reference first (so its peak is
   // already counted when the full one is measured), then the full one.
-  {
-    SynthSpec half;
-    half.duration_s = 213.5;
-    half.seed = 3;
-    half.joint_count_hint = 25;
-    const SynthClip half_clip = synth_speaker(half);
-    const double before = peak_rss_mb();
-    const MotionGraph g_half = timed_build(half_clip, "synthetic 213.5 s", cfg);
-    std::printf("  peak RSS grew by %.1f MB during the build\n", peak_rss_mb() - before);
-  }
+  synthetic_graph(213.5, cfg);
+  const MotionGraph g = synthetic_graph(427.0, cfg);
 
-  SynthSpec ref;
-  ref.duration_s = 427.0;
-  ref.seed = 3;
-  ref.joint_count_hint = 25;
-  auto t0 = std::chrono::steady_clock::now();
-  const SynthClip clip = synth_speaker(ref);
-  std::printf("synthetic 427 s reference generated in %.2f s (%d frames, %d joints)\n", seconds_since(t0),
-              clip.motion.frame_count, clip.motion.joint_count());
-  const double rss_before = peak_rss_mb();
-  const MotionGraph g = timed_build(clip, "synthetic 427 s", cfg);
-  std::printf("  peak RSS grew by %.1f MB during the build\n", peak_rss_mb() - rss_before);
-
-  SynthSpec test;
-  test.duration_s = 77.0;
-  test.seed = 4;
-  test.joint_count_hint = 25;
-  const SynthClip speech = synth_speaker(test);
+  const SynthClip speech = synthetic_clip(77.0, 4);
   const text::Lexicon lexicon = lexicon_for(cfg.graph);
-  t0 = std::chrono::steady_clock::now();
+  auto t0 = std::chrono::steady_clock::now();
   const SpeechEvents ev = speech_events(speech.audio, &speech.words, "test", g.motion.fps, -1, cfg.graph, lexicon);
   const double analyse = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
