@@ -62,8 +62,7 @@ namespace {
 
 // Candidate right frames of one left frame, in frame order.
 struct Candidate {
-  int to;
-  double weight;  // filled in only for the edges that survive pruning
+  int to;  // the right frame; its weight is computed only if it survives pruning
 };
 
 // The exact distance test of every pair, organised so that it never holds an N x N matrix:
@@ -135,7 +134,7 @@ class DistanceFilter {
         const float approx = approximate(l, r);
         if (approx > static_cast<float>(t) * (1.0f + 1e-4f) + 1e-12f) continue;
         if (approx >= static_cast<float>(t) * (1.0f - 1e-4f) && exact(l, r) > t) continue;
-        out[static_cast<std::size_t>(i)].push_back({r, 0.0});
+        out[static_cast<std::size_t>(i)].push_back({r});
       }
     }
   }
