@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace gmg::audio {
 

@@ -20,7 +20,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace gmg::audio {
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "graph/motion_graph.h"
 
 namespace gmg {

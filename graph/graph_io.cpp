@@ -16,8 +16,8 @@
 #include <boost/graph/graphviz.hpp>
 #include <boost/property_map/dynamic_property_map.hpp>
 
-#include "engine/error.h"
-#include "engine/file_util.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "graph/motion_graph.h"
 
 namespace gmg {

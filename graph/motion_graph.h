@@ -11,8 +11,8 @@
 
 #include <boost/graph/adjacency_list.hpp>
 
-#include "engine/config.h"
-#include "engine/motion.h"
+#include "graph/params.h"
+#include "engine/motion/motion.h"
 
 namespace gmg {
 

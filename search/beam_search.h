@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/config.h"
+#include "search/params.h"
 #include "graph/motion_graph.h"
 #include "search/segmentation.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/config.h"
+#include "search/params.h"
 #include "graph/motion_graph.h"
 #include "search/beam_search.h"
 #include "search/segmentation.h"

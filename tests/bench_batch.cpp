@@ -25,8 +25,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "engine/batch.h"
-#include "engine/synth.h"
+#include "engine/app/batch/batch.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

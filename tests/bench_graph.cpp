@@ -11,8 +11,8 @@
 #include <sys/resource.h>
 
 #include "audio/wav.h"
-#include "engine/pipeline.h"
-#include "engine/synth.h"
+#include "engine/app/pipeline.h"
+#include "engine/app/synth/synth.h"
 #include "graph/motion_graph.h"
 #include "tests/test_support.h"
 

@@ -1,9 +1,9 @@
 // The ablation run on a synthetic recording: five setups, the paper's rows, sane metrics.
 #include <gtest/gtest.h>
 
-#include "engine/ablation.h"
-#include "engine/error.h"
-#include "engine/synth.h"
+#include "engine/app/ablation.h"
+#include "engine/core/error.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

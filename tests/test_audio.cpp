@@ -17,7 +17,7 @@
 
 #include "audio/onset.h"
 #include "audio/wav.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/test_support.h"
 
 namespace {

@@ -17,11 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "audio/wav.h"
-#include "engine/batch.h"
-#include "engine/bvh.h"
-#include "engine/error.h"
-#include "engine/file_util.h"
-#include "engine/synth.h"
+#include "engine/app/batch/batch.h"
+#include "engine/motion/bvh.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/cleanup.h"
-#include "engine/error.h"
-#include "engine/pipeline.h"
-#include "engine/synth.h"
+#include "engine/motion/cleanup.h"
+#include "engine/core/error.h"
+#include "engine/app/pipeline.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

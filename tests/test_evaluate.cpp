@@ -1,10 +1,10 @@
 // gmg evaluate over files: inputs, skipped metrics, mismatch errors.
 #include <gtest/gtest.h>
 
-#include "engine/bvh.h"
-#include "engine/error.h"
-#include "engine/evaluate.h"
-#include "engine/synth.h"
+#include "engine/motion/bvh.h"
+#include "engine/core/error.h"
+#include "engine/metrics/evaluate.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/error.h"
-#include "engine/file_util.h"
-#include "engine/pipeline.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/app/pipeline.h"
 #include "graph/motion_graph.h"
 #include "tests/test_support.h"
 

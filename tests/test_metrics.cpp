@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/error.h"
-#include "engine/metrics.h"
+#include "engine/core/error.h"
+#include "engine/metrics/metrics.h"
 
 namespace gmg {
 namespace {

@@ -5,11 +5,11 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include "engine/bvh.h"
-#include "engine/error.h"
-#include "engine/file_util.h"
-#include "engine/motion.h"
-#include "engine/rotation.h"
+#include "engine/motion/bvh.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/motion/motion.h"
+#include "engine/motion/rotation.h"
 #include "tests/test_support.h"
 
 namespace gmg {

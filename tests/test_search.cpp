@@ -4,13 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/blend.h"
-#include "engine/bvh.h"
-#include "engine/cli.h"
-#include "engine/error.h"
-#include "engine/file_util.h"
-#include "engine/pipeline.h"
-#include "engine/synth.h"
+#include "engine/assemble/blend.h"
+#include "engine/motion/bvh.h"
+#include "engine/app/cli.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/app/pipeline.h"
+#include "engine/app/synth/synth.h"
 #include "search/beam_search.h"
 #include "search/planner.h"
 #include "search/segmentation.h"

@@ -11,10 +11,10 @@
 
 #include "audio/onset.h"
 #include "audio/wav.h"
-#include "engine/bvh.h"
-#include "engine/error.h"
-#include "engine/motion.h"
-#include "engine/synth.h"
+#include "engine/motion/bvh.h"
+#include "engine/core/error.h"
+#include "engine/motion/motion.h"
+#include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 #include "text/keywords.h"
 #include "text/transcript.h"
@@ -217,7 +217,7 @@ TEST(Synth, WriteAndReadBack) {
 
 TEST(Synth, KeywordsMatchTheLexicon) {
   const SynthClip clip = gmg::synth_speaker(spec_of(60.0, 9));
-  const gmg::text::Lexicon lex = gmg::text::load_lexicon(gmg::text::default_lexicon_path());
+  const gmg::text::Lexicon lex = gmg::text::default_lexicon();
   const std::vector<gmg::text::KeywordEvent> events = gmg::text::detect_keywords(clip.words, lex);
   ASSERT_EQ(events.size(), clip.keyword_times.size());
   for (std::size_t i = 0; i < events.size(); ++i) EXPECT_DOUBLE_EQ(events[i].time, clip.keyword_times[i]);

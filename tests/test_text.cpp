@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/test_support.h"
 #include "text/keywords.h"
 #include "text/transcript.h"
@@ -609,7 +609,7 @@ TEST(TextKeywords, LoadLexiconFile) {
 }
 
 TEST(TextKeywords, DefaultLexiconLoads) {
-  auto lex = tx::load_lexicon(tx::default_lexicon_path());
+  auto lex = tx::default_lexicon();
   EXPECT_GE(lex.size(), 150u);
   EXPECT_LE(lex.size(), 260u);
   for (const char* w : {"big", "not", "this", "very", "don't", "a lot", "on the other hand"})
@@ -623,7 +623,7 @@ TEST(TextKeywords, DefaultLexiconLoads) {
 TEST(TextRealData, Beat2ScottTextGrids) {
   GMG_REQUIRE_SHARED_DATA();
   const std::string dir = gmg::testing::shared_data_dir() + "/beat2_scott/";
-  const auto lex = tx::load_lexicon(tx::default_lexicon_path());
+  const auto lex = tx::default_lexicon();
   for (const char* name : {"2_scott_0_1_1", "2_scott_0_2_2", "2_scott_0_3_3"}) {
     SCOPED_TRACE(name);
     const std::string path = dir + name + ".TextGrid";

@@ -6,12 +6,9 @@
 #include <set>
 #include <unordered_map>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
+#include "text/default_lexicon.h"
 #include "text/text_file.h"
-
-#ifndef GMG_ASSETS_DIR
-#define GMG_ASSETS_DIR "assets"
-#endif
 
 namespace gmg::text {
 
@@ -172,7 +169,10 @@ bool Lexicon::contains(const std::string& phrase) const {
 }
 
 Lexicon load_lexicon(const std::string& path) {
-  const std::string text = detail::read_text_file(path, "keyword lexicon");
+  return parse_lexicon(detail::read_text_file(path, "keyword lexicon"), path);
+}
+
+Lexicon parse_lexicon(const std::string& text, const std::string& path) {
   const std::vector<std::string> lines = detail::split_lines(text);
   Lexicon lex;
   std::set<std::vector<std::string>> seen;
@@ -191,7 +191,10 @@ Lexicon load_lexicon(const std::string& path) {
   return lex;
 }
 
-std::string default_lexicon_path() { return std::string(GMG_ASSETS_DIR) + "/keywords.txt"; }
+Lexicon default_lexicon() {
+  static const Lexicon lexicon = parse_lexicon(kDefaultLexiconText, kDefaultLexiconName);
+  return lexicon;
+}
 
 std::vector<KeywordEvent> detect_keywords(const std::vector<Word>& words, const Lexicon& lexicon) {
   struct Token {

@@ -57,8 +57,12 @@ struct Lexicon {
 // (with the line number), or when it holds no entry at all.
 Lexicon load_lexicon(const std::string& path);
 
-// GMG_ASSETS_DIR "/keywords.txt": the lexicon shipped with the project.
-std::string default_lexicon_path();
+// The same from text already in memory (UTF-8); `path` names it in errors.
+Lexicon parse_lexicon(const std::string& text, const std::string& path);
+
+// The lexicon shipped with the project (assets/keywords.txt), compiled into the binary so that
+// an installed or moved gmg needs no source tree.
+Lexicon default_lexicon();
 
 struct KeywordEvent {
   double time = 0;      // seconds: start of the Word holding the first token of the run's first match

@@ -7,7 +7,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace gmg::text::detail {
 

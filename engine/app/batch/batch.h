@@ -1,0 +1,149 @@
+// `gmg batch`: reenact many test speeches against a pool of reference clips (the paper's
+// GENEA 2023 protocol, section 5.1.1), in parallel, resumably.
+//
+// Inputs
+// - Pool clips (references): BVH + WAV + optional transcript. Test clips: WAV + optional
+//   transcript (a BVH beside a test WAV, e.g. ground truth, is ignored).
+// - A clip folder (`--pool DIR`, `--tests DIR`, both repeatable) holds files with matching stems,
+//   either flat (DIR/a.bvh, DIR/a.wav, DIR/a.tsv) or GENEA-style in subfolders (DIR/bvh/a.bvh,
+//   DIR/wav/a.wav, DIR/tsv/a.tsv); both may be mixed. The subfolders looked into are named
+//   bvh, wav, tsv, textgrid, json, transcript, transcripts (any case). Extensions are matched
+//   ignoring case: .bvh, .wav, and transcripts .tsv (preferred), .TextGrid, .json. Pool stems
+//   need a BVH and a WAV (a BVH without WAV is reported and left out; a WAV without BVH is a
+//   test clip and ignored in a pool); test stems need a WAV. The same stem found twice (in
+//   two folders or two layouts) is a setup error.
+// - A clip manifest (`--pool-manifest`, `--test-manifest`, repeatable) is a CSV with a header
+//   row naming its columns: `stem`, `bvh` (alias `motion`), `wav` (alias `audio`), `transcript`
+//   (alias `tsv`, `textgrid`). `stem` defaults to the WAV's (tests) or BVH's (pool) file stem;
+//   an empty transcript or "none" means none; relative paths are relative to the manifest's
+//   folder. Lines starting with '#' and blank lines are skipped; fields may be "quoted".
+//   Missing files are not a setup error: they fail the clips that need them.
+//
+// Pairing
+// - random (default): pool minus blacklist, sorted by stem. Test clips are taken in stem order
+//   and each draws `candidates[rng() % candidates.size()]` from one std::mt19937_64(seed), where
+//   candidates excludes a pool clip with the test's own stem (that would copy the ground
+//   truth). One draw per test clip, also for clips skipped because their output exists, so the
+//   pairing depends only on the seed, the pool, the blacklist and the test stems; never on
+//   --jobs or scheduling.
+// - manifest: a CSV `test_stem,reference_stem` (optional header row with those names, '#'
+//   comments). A test clip absent from it, or paired with a stem that is not in the pool or is
+//   blacklisted, fails (only that clip); a manifest row naming an unknown test is a setup
+//   error. OUTDIR/pairs.csv of a previous run is such a manifest.
+// - Blacklist: one stem per line ('#' starts a comment; a file name or path is accepted, its
+//   folder and a .bvh/.wav/.tsv/.textgrid/.json extension are dropped). It removes pool clips
+//   only.
+//
+// Work
+// - Each reference's graph is built once, when the first clip needing it starts, and shared by
+//   every clip that drew it; it is released when the last of them has finished. A worker with
+//   nothing else to do never waits for a graph another worker builds while a clip with a ready
+//   graph or an unbuilt one is left, so at most about `jobs` graphs are in memory at once.
+// - Every reenactment uses the same seed (`--seed`, else config.seed), so a clip's output does not
+//   depend on scheduling and equals `gmg reenact --graph G --seed N` with G built from its
+//   reference alone.
+// - Outputs: OUTDIR/<test_stem>.bvh (in the reference's skeleton; written to a temporary name and
+//   renamed, so an interrupted run leaves no truncated BVH), optional OUTDIR/<test_stem>.json
+//   (the reenactment report, with --reports), OUTDIR/pairs.csv (test_stem,reference_stem; written
+//   before any clip starts), OUTDIR/summary.csv and OUTDIR/summary.json (written at the end).
+//   A clip whose BVH exists is skipped unless --force (its reference in pairs.csv is the one the
+//   previous pairs.csv recorded, when it did; its frames, fallbacks, failures and seconds in the
+//   summary are the previous summary.json's, when it recorded them). Stale temporary files of a killed run (of a
+//   process no longer alive) are removed.
+// - A clip that cannot be made (unreadable input, broken reference, ...) fails with its error
+//   text in the summary; the others complete.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "engine/app/config.h"
+
+namespace CLI {
+class App;
+}
+
+namespace gmg {
+
+enum class BatchProgress {
+  Auto,      // a single updating line when the stream is std::cerr/std::clog (std::cout) and
+             // stderr (stdout) is a terminal, else plain lines
+  Terminal,  // always the updating line
+  Lines,     // always plain lines
+  Quiet,     // nothing
+};
+
+struct BatchOptions {
+  std::vector<std::string> pool_dirs;        // --pool DIR (repeatable)
+  std::vector<std::string> pool_manifests;   // --pool-manifest CSV (repeatable)
+  std::vector<std::string> test_dirs;        // --tests DIR (repeatable)
+  std::vector<std::string> test_manifests;   // --test-manifest CSV (repeatable)
+  std::string output_dir;                    // -o OUTDIR (created when missing)
+  std::string pairing;                       // "random", "manifest", or "" = manifest when
+                                             // pairs_manifest is set, else random
+  std::string pairs_manifest;                // --manifest pairs.csv
+  std::string blacklist;                     // --blacklist FILE ("" = none)
+  std::optional<std::uint64_t> seed;         // --seed: pairing draw and reenactment; unset = config.seed
+  int jobs = 0;                              // --jobs: worker threads; 0 = all cores
+  bool force = false;                        // --force: redo clips whose output exists
+  bool reports = false;                      // --reports: also write OUTDIR/<stem>.json
+  BatchProgress progress = BatchProgress::Auto;
+  // When set and it becomes true, no further clip or graph build starts; clips under way finish,
+  // the summary is written (remaining clips "cancelled") and BatchSummary::interrupted is true.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct BatchClipResult {
+  std::string test_stem, reference_stem, output, error;
+  std::string status;        // "ok", "failed", "skipped" (output existed) or "cancelled"
+  int frames = 0, fallbacks = 0, failures = 0;  // from the reenactment report's totals
+  double seconds = 0;        // this clip's own work (speech analysis, search, writing); not the
+                             // graph build and not time spent waiting for it. For a skipped clip,
+                             // frames..seconds are the previous run's (0 when unknown).
+  bool skipped_existing = false;
+};
+
+struct BatchReferenceResult {
+  std::string stem, motion, audio, transcript;
+  int clips = 0;             // test clips that drew it (and were not skipped)
+  int frames = 0;            // graph frames (0 when not built)
+  double build_seconds = 0;  // graph build time (0 when not built)
+  std::string error;         // build error, "" when fine or not built
+};
+
+struct BatchSummary {
+  std::vector<BatchClipResult> clips;           // sorted by test stem
+  std::vector<BatchReferenceResult> references;  // pool after the blacklist, sorted by stem
+  int ok = 0, failed = 0, skipped = 0, cancelled = 0;
+  int blacklisted = 0;       // pool clips removed by the blacklist
+  int jobs = 1;              // worker threads used
+  std::uint64_t seed = 0;
+  double seconds = 0;        // wall time of the whole run
+  double graph_seconds = 0;  // sum of graph build times
+  bool interrupted = false;  // options.cancel was raised
+};
+
+// Runs a batch. Progress goes to `progress`. Throws gmg::Error on a setup problem (no pool or test
+// clips, an unreadable manifest or blacklist, a duplicate stem, an empty pool after the
+// blacklist, a bad option, an unusable output folder); per-clip problems are reported in the
+// summary instead.
+BatchSummary batch_run(const BatchOptions& options, const Config& config, std::ostream& progress);
+
+// The pairing draw (exposed for tests): for each test stem in the given order, one draw from
+// `pool` (sorted, blacklist already removed) without the test's own stem; "" when no candidate is
+// left.
+std::vector<std::string> batch_draw_references(const std::vector<std::string>& test_stems,
+                                               const std::vector<std::string>& pool, std::uint64_t seed);
+
+// Registers the "batch" subcommand on app (with its own --config FILE and --set key=value options,
+// applied in that order, then --seed). Its callback runs batch_run with progress on std::cerr and
+// sets *exit_code: 0 every clip made or skipped, 1 some clip failed, 2 a setup error (printed as
+// one line "gmg: error: ..."), 130 interrupted by SIGINT/SIGTERM (the first signal lets clips
+// under way finish and writes the summary; a second one kills).
+void add_batch_command(CLI::App& app, int* exit_code);
+
+}  // namespace gmg

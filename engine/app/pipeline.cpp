@@ -1,0 +1,160 @@
+#include "engine/app/pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "audio/onset.h"
+#include "audio/wav.h"
+#include "engine/assemble/blend.h"
+#include "engine/motion/bvh.h"
+#include "engine/motion/cleanup.h"
+#include "engine/core/error.h"
+#include "search/segmentation.h"
+
+namespace gmg {
+
+text::Lexicon lexicon_for(const GraphParams& params) {
+  return params.keywords.empty() ? text::default_lexicon() : text::load_lexicon(params.keywords);
+}
+
+SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
+  SpeechEvents ev;
+  ev.duration_s = sound.duration();
+  ev.total_frames = frame_count >= 0 ? frame_count : static_cast<int>(std::lround(ev.duration_s * fps));
+  if (ev.total_frames < 1) throw Error(name + ": audio is shorter than one motion frame");
+
+  audio::OnsetParams onset_params;
+  onset_params.min_onset_strength = params.min_onset_strength;
+  const audio::OnsetAnalysis onsets = audio::detect_onsets(sound, onset_params);
+  ev.onset_frames = audio::onset_motion_frames(onsets, fps, ev.total_frames);
+
+  if (words) {
+    text::check_transcript_fits(*words, ev.duration_s, name);
+    ev.words = static_cast<int>(words->size());
+    for (const text::KeywordFrame& k : text::keyword_frames(text::detect_keywords(*words, lexicon), fps, ev.total_frames))
+      ev.keyword_frames.emplace_back(k.frame, k.keyword);
+  }
+  return ev;
+}
+
+SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
+                            const text::Lexicon& lexicon) {
+  const audio::Audio sound = audio::read_wav(files.audio);
+  if (files.transcript.empty()) return speech_events(sound, nullptr, files.audio, fps, frame_count, params, lexicon);
+  const std::vector<text::Word> words = text::read_transcript(files.transcript, files.transcript_format);
+  return speech_events(sound, &words, files.transcript, fps, frame_count, params, lexicon);
+}
+
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config) {
+  config_validate(config);
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  std::vector<ClipEvents> inputs;
+  for (const ReferenceFiles& c : clips) {
+    ClipEvents in;
+    in.name = c.motion;
+    in.motion = bvh_read(c.motion);
+    motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
+                           config.cleanup.smooth_order, c.motion);
+    if (!inputs.empty()) {
+      std::string why;
+      if (!skeletons_match(inputs.front().motion.skeleton, in.motion.skeleton, &why))
+        throw Error(c.motion + ": skeleton differs from " + inputs.front().name + "'s: " + why);
+    }
+    const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
+    in.onset_frames = ev.onset_frames;
+    in.keyword_frames = ev.keyword_frames;
+    inputs.push_back(std::move(in));
+  }
+  return graph_build(std::move(inputs), config.graph);
+}
+
+Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
+  std::vector<Motion> pieces;
+  pieces.reserve(plan.segments.size());
+  for (const PlannedSegment& s : plan.segments) pieces.push_back(resample_path(g.motion, s.path, s.sub.length));
+  return blend_concatenate(pieces, params);
+}
+
+namespace {
+
+// Contiguous runs of a path: [[first, last], ...] in graph frames.
+nlohmann::ordered_json frame_ranges(const std::vector<int>& path) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < path.size();) {
+    std::size_t j = i;
+    while (j + 1 < path.size() && path[j + 1] == path[j] + 1) ++j;
+    out.push_back({path[i], path[j]});
+    i = j + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config) {
+  config_validate(config);
+  std::mt19937_64 rng(config.seed);
+  const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
+  Reenactment r;
+  r.plan = plan_reenactment(g, subs, config.search, rng);
+  r.motion = assemble_motion(g, r.plan, config.blend);
+
+  nlohmann::ordered_json& rep = r.report;
+  rep["frames"] = events.total_frames;
+  rep["fps"] = g.motion.fps;
+  rep["duration_s"] = events.duration_s;
+  rep["seed"] = config.seed;
+  rep["parameters"] = nlohmann::ordered_json::parse(config_to_json(config));
+  rep["test_events"] = {{"onsets", events.onset_frames.size()},
+                        {"keywords", events.keyword_frames.size()},
+                        {"words", events.words}};
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  int accepted = 0;
+  for (const PlannedSegment& s : r.plan.segments) {
+    nlohmann::ordered_json item;
+    item["start_frame"] = s.sub.start;
+    item["target_length"] = s.sub.length;
+    item["termination"] = s.sub.kind == Termination::Keyword ? "keyword" : "rhythm";
+    if (s.sub.kind == Termination::Keyword) item["keyword"] = s.sub.keyword;
+    item["accepted"] = s.accepted;
+    item["continued"] = s.continued;
+    item["retries"] = s.retries;
+    item["fallback"] = fallback_name(s.fallback);
+    item["failure"] = s.failure;
+    item["cost"] = s.cost;
+    item["path_length"] = s.path.size();
+    item["graph_ranges"] = frame_ranges(s.path);
+    list.push_back(item);
+    if (s.accepted) ++accepted;
+  }
+  rep["subsequences"] = list;
+  rep["totals"] = {{"subsequences", r.plan.segments.size()},
+                   {"accepted", accepted},
+                   {"failures", r.plan.failures},
+                   {"fallbacks",
+                    {{"keyword_to_rhythm", r.plan.fallback_counts[static_cast<int>(Fallback::KeywordToRhythm)]},
+                     {"ignore_stops", r.plan.fallback_counts[static_cast<int>(Fallback::IgnoreStops)]},
+                     {"hold_last_frame", r.plan.fallback_counts[static_cast<int>(Fallback::HoldLastFrame)]}}}};
+  return r;
+}
+
+Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
+                    const std::string& graph_name) {
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
+  Reenactment r = reenact_events(g, events, config);
+  nlohmann::ordered_json inputs = {{"graph", graph_name},
+                                   {"audio", speech.audio},
+                                   {"transcript", speech.transcript.empty() ? nlohmann::ordered_json(nullptr)
+                                                                            : nlohmann::ordered_json(speech.transcript)}};
+  nlohmann::ordered_json full;
+  full["tool"] = "gmg reenact";
+  full["inputs"] = inputs;
+  for (auto it = r.report.begin(); it != r.report.end(); ++it) full[it.key()] = it.value();
+  r.report = std::move(full);
+  return r;
+}
+
+}  // namespace gmg

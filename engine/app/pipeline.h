@@ -1,0 +1,78 @@
+// The engine's jobs: analyse speech into timed events, build a graph from reference files,
+// reenact new speech from a graph. The command-line tool and batch runs call these.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "audio/wav.h"
+#include "engine/app/config.h"
+#include "engine/motion/motion.h"
+#include "graph/motion_graph.h"
+#include "search/planner.h"
+#include "text/keywords.h"
+#include "text/transcript.h"
+
+namespace gmg {
+
+// One speech: an audio file and, optionally, a word-timed transcript.
+struct SpeechFiles {
+  std::string audio;        // WAV path (required)
+  std::string transcript;   // "" = none
+  text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
+};
+
+// Speech as frames on a motion grid.
+struct SpeechEvents {
+  double duration_s = 0.0;  // audio duration
+  int total_frames = 0;     // round(duration_s * fps) for test speech; the motion length for a reference
+  std::vector<int> onset_frames;                            // ascending, unique, in [0, total_frames)
+  std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
+  int words = 0;            // transcript words read
+};
+
+// Detects onsets (SPEC "Onset nodes") and keywords in a speech. frame_count < 0 means a test
+// speech (T = round(duration * fps)); otherwise events at or after frame_count are dropped (a
+// reference whose audio outlasts its motion). A transcript that runs past the audio's end is an
+// error naming the transcript.
+SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
+                            const text::Lexicon& lexicon);
+
+// Same, from audio and words already in memory (words may be null: no transcript). `name`
+// labels errors (the transcript's file name).
+SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon);
+
+// The lexicon named by params.keywords, or assets/keywords.txt.
+text::Lexicon lexicon_for(const GraphParams& params);
+
+struct ReferenceFiles {
+  std::string motion;       // BVH path
+  SpeechFiles speech;
+};
+
+// Reads, analyses and joins the clips into one graph.
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config);
+
+struct Reenactment {
+  Motion motion;            // exactly events.total_frames frames, in the graph's skeleton
+  Plan plan;
+  nlohmann::ordered_json report;
+};
+
+// Reenacts the speech: segmentation, planning, resampling, blending. Deterministic for a given
+// graph, speech, config (including config.seed). `graph_name` only labels the report.
+Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
+                    const std::string& graph_name);
+
+// Same, from events already analysed.
+Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);
+
+// Paths of a plan, resampled to their target lengths and blended into one motion.
+Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params);
+
+}  // namespace gmg

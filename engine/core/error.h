@@ -1,0 +1,42 @@
+// The one error type every reader and job throws.
+//
+// Contract: the message is complete and user-facing: it names the file (when
+// there is one), the place in it (line or byte offset) and the problem, e.g.
+// "take.bvh: line 12: expected 6 channels, found 3". The command-line tool
+// prints it as is and exits non-zero, so callers never add context twice.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace gmg {
+
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Builds "path: line N: what" (line omitted when 0).
+inline std::string error_at_line(const std::string& path, long line, const std::string& what) {
+  std::ostringstream os;
+  os << path;
+  if (line > 0) os << ": line " << line;
+  os << ": " << what;
+  return os.str();
+}
+
+// Builds "path: byte N: what".
+inline std::string error_at_byte(const std::string& path, long long offset, const std::string& what) {
+  std::ostringstream os;
+  os << path << ": byte " << offset << ": " << what;
+  return os.str();
+}
+
+// Parameter checks of every stage: throws gmg::Error "invalid config: <what>" when !ok. `what`
+// names the key and the rule ("l_pn must be >= 1").
+inline void require_param(bool ok, const std::string& what) {
+  if (!ok) throw Error("invalid config: " + what);
+}
+
+}  // namespace gmg

@@ -1,0 +1,28 @@
+// Graph construction parameters (paper 4.1, section 5; SPEC "Key nodes", "Edges").
+//
+// Owned by the graph stage: graph_params_validate checks them once, before a build.
+#pragma once
+
+#include <string>
+
+namespace gmg {
+
+struct GraphParams {
+  double lambda_pos = 1.0;          // weight of the joint-position term of the pose distance
+  double lambda_vel = 1.0;          // weight of the joint-velocity term
+  int l_cn = 5;                     // frames after l whose mean distance is l's continuity threshold
+  int l_pn = 10;                    // pruning neighbourhood (frames)
+  bool exclude_near = true;         // never jump to |r - l| <= l_pn (a stutter); false = paper-literal
+  double min_onset_strength = 5.0;  // raw onset envelope value a peak needs (mean per-band dB rise)
+  // Capture jumps: a frame whose distance to the next is above break_jump_factor times the
+  // clip's median frame-to-frame distance is a break node. 8x the median is far outside the
+  // spread of natural motion (speed rarely exceeds 4x its median in conversational gesture)
+  // yet catches the teleports of a broken capture.
+  double break_jump_factor = 8.0;
+  std::string keywords;             // keyword lexicon file; "" = assets/keywords.txt
+};
+
+// Throws gmg::Error naming the first key out of range.
+void graph_params_validate(const GraphParams& params);
+
+}  // namespace gmg
