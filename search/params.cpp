@@ -13,7 +13,6 @@ void search_params_validate(const SearchParams& p) {
                     std::to_string(p.w_full.size()));
   require_param(p.retries >= 0, "retries must be >= 0");
   require_param(p.max_length_factor >= 1.1, "max_length_factor must be >= 1.1");
-  require_param(p.init == "feature" || p.init == "random", "init must be 'feature' or 'random'");
   require_param(p.ignore_rounds >= 1, "ignore_rounds must be >= 1");
 }
 

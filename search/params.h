@@ -4,10 +4,17 @@
 // Owned by the search stage: search_params_validate checks them once, before planning.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "engine/core/enum_names.h"
+
 namespace gmg {
+
+// How start nodes are chosen (paper 4.2.3; "random" is Table 2's weak initialisation).
+enum class InitMode : std::uint8_t { Feature, Random };
+inline constexpr EnumName<InitMode> kInitModeNames[] = {{InitMode::Feature, "feature"}, {InitMode::Random, "random"}};
 
 struct SearchParams {
   int l_npaths = 20;                // beam width and number of start nodes
@@ -25,7 +32,7 @@ struct SearchParams {
   // 1.1 * l_sub can be accepted, so 1.5 leaves room for paths that wander and come back.
   double max_length_factor = 1.5;
   bool fallbacks = true;            // false: report failures instead (paper's Table 2 ablation)
-  std::string init = "feature";     // "feature" (paper 4.2.3) or "random" (weak initialisation)
+  InitMode init = InitMode::Feature;  // feature (paper 4.2.3) or random (weak initialisation)
   // Fallback 2 drops this growing share of stopping nodes per round: 0.25, 0.5, 0.75, 1.0.
   int ignore_rounds = 4;
 };

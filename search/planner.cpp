@@ -6,14 +6,18 @@
 
 namespace gmg {
 
-const char* fallback_name(Fallback f) {
-  switch (f) {
-    case Fallback::None: return "none";
-    case Fallback::KeywordToRhythm: return "keyword_to_rhythm";
-    case Fallback::IgnoreStops: return "ignore_stops";
-    case Fallback::HoldLastFrame: return "hold_last_frame";
-  }
-  return "?";
+int Plan::fallback_count(Fallback f) const {
+  return static_cast<int>(
+      std::count_if(segments.begin(), segments.end(), [f](const PlannedSegment& s) { return s.fallback == f; }));
+}
+
+int Plan::fallback_total() const {
+  return static_cast<int>(segments.size()) - fallback_count(Fallback::None);
+}
+
+int Plan::failure_count() const {
+  return static_cast<int>(
+      std::count_if(segments.begin(), segments.end(), [](const PlannedSegment& s) { return s.failure; }));
 }
 
 std::vector<double> key_feature(const std::vector<int>& keys, std::size_t i, int l_feat) {
@@ -42,8 +46,6 @@ class Planner {
     bool previous_clean = false;  // the previous segment needed no fallback
     for (std::size_t k = 0; k < subs_.size(); ++k) {
       PlannedSegment seg = plan_one(k, previous_path, previous_clean);
-      if (seg.failure) ++plan.failures;
-      ++plan.fallback_counts[static_cast<int>(seg.fallback)];
       previous_clean = seg.accepted && seg.fallback == Fallback::None;
       previous_path = seg.path;
       plan.segments.push_back(std::move(seg));
@@ -57,7 +59,7 @@ class Planner {
   std::vector<int> start_nodes(std::size_t k, int round) {
     const std::size_t width = static_cast<std::size_t>(params_.l_npaths);
     std::vector<int> out;
-    if (params_.init == "feature" && !keys_.empty()) {
+    if (params_.init == InitMode::Feature && !keys_.empty()) {
       const std::vector<double> ft = key_feature(test_keys_, k, params_.l_feat);
       std::vector<double> distance(keys_.size());
       for (std::size_t m = 0; m < keys_.size(); ++m) {

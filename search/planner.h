@@ -15,13 +15,17 @@
 
 namespace gmg {
 
-enum class Fallback {
+enum class Fallback : std::uint8_t {
   None,
   KeywordToRhythm,   // 1: keyword termination found nothing; rhythm termination did
   IgnoreStops,       // 2: paths ran through a share of the stopping nodes
   HoldLastFrame,     // 3: the previous result's last frame repeated to the target length
 };
-const char* fallback_name(Fallback f);
+inline constexpr EnumName<Fallback> kFallbackNames[] = {{Fallback::None, "none"},
+                                                       {Fallback::KeywordToRhythm, "keyword_to_rhythm"},
+                                                       {Fallback::IgnoreStops, "ignore_stops"},
+                                                       {Fallback::HoldLastFrame, "hold_last_frame"}};
+inline const char* fallback_name(Fallback f) { return enum_name(kFallbackNames, f); }
 
 struct PlannedSegment {
   Subsequence sub;
@@ -36,8 +40,11 @@ struct PlannedSegment {
 
 struct Plan {
   std::vector<PlannedSegment> segments;
-  int fallback_counts[4] = {0, 0, 0, 0};  // by Fallback value
-  int failures = 0;
+
+  // Counts over the segments.
+  int fallback_count(Fallback f) const;
+  int fallback_total() const;  // segments that needed any fallback
+  int failure_count() const;
 };
 
 // Key-node feature (SPEC): lengths of the l_feat subsequences that follow key frame index i in

@@ -104,6 +104,6 @@ int main() {
   std::printf("reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
               "search + blending %.3f s, total %.3f s (one core)\n",
               ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
-  std::printf("  fallbacks: %s, failures %d\n", r.report["totals"]["fallbacks"].dump().c_str(), r.plan.failures);
+  std::printf("  fallbacks: %s, failures %d\n", r.report["totals"]["fallbacks"].dump().c_str(), r.plan.failure_count());
   return 0;
 }

@@ -135,11 +135,11 @@ TEST(Fallbacks, KeywordFallsBackToRhythm) {
   const Plan plan = plan_one(g, {{0, 10, Termination::Keyword, "zebra"}}, true);
   EXPECT_EQ(plan.segments[0].fallback, Fallback::KeywordToRhythm);
   EXPECT_TRUE(plan.segments[0].accepted);
-  EXPECT_EQ(plan.fallback_counts[static_cast<int>(Fallback::KeywordToRhythm)], 1);
+  EXPECT_EQ(plan.fallback_count(Fallback::KeywordToRhythm), 1);
   const Plan off = plan_one(g, {{0, 10, Termination::Keyword, "zebra"}}, false);
-  EXPECT_EQ(off.failures, 1);
+  EXPECT_EQ(off.failure_count(), 1);
   EXPECT_TRUE(off.segments[0].failure);
-  EXPECT_EQ(off.fallback_counts[static_cast<int>(Fallback::KeywordToRhythm)], 0);
+  EXPECT_EQ(off.fallback_count(Fallback::KeywordToRhythm), 0);
 }
 
 TEST(Fallbacks, PathsStoppingTooEarlyIgnoreStops) {
@@ -154,8 +154,8 @@ TEST(Fallbacks, PathsStoppingTooEarlyIgnoreStops) {
   const std::size_t n = plan.segments[0].path.size();
   EXPECT_GE(n, 27u);
   EXPECT_LE(n, 33u);
-  EXPECT_EQ(plan.fallback_counts[static_cast<int>(Fallback::IgnoreStops)], 1);
-  EXPECT_EQ(plan_one(g, {{0, 30, Termination::Rhythm, ""}}, false).failures, 1);
+  EXPECT_EQ(plan.fallback_count(Fallback::IgnoreStops), 1);
+  EXPECT_EQ(plan_one(g, {{0, 30, Termination::Rhythm, ""}}, false).failure_count(), 1);
 }
 
 TEST(Fallbacks, HopelessTargetHoldsTheLastFrame) {
@@ -165,9 +165,9 @@ TEST(Fallbacks, HopelessTargetHoldsTheLastFrame) {
   EXPECT_TRUE(plan.segments[0].accepted);
   EXPECT_EQ(plan.segments[1].fallback, Fallback::HoldLastFrame);
   EXPECT_EQ(plan.segments[1].path, std::vector<int>{plan.segments[0].path.back()});
-  EXPECT_EQ(plan.fallback_counts[static_cast<int>(Fallback::HoldLastFrame)], 1);
+  EXPECT_EQ(plan.fallback_count(Fallback::HoldLastFrame), 1);
   const Plan off = plan_one(g, {{0, 10, Termination::Rhythm, ""}, {10, 300, Termination::Rhythm, ""}}, false);
-  EXPECT_EQ(off.failures, 1);
+  EXPECT_EQ(off.failure_count(), 1);
   // Even a failure yields frames: the assembled motion has the full length.
   EXPECT_EQ(assemble_motion(g, off, BlendParams{}).frame_count, 310);
 }
@@ -237,14 +237,14 @@ TEST(Blend, JunctionHasNoJump) {
   const std::vector<double> a = ramp(0.0, 0.04, 30);
   const std::vector<std::vector<double>> rights = {ramp(0.96, 0.04, 30), ramp(1.20, 0.04, 30), ramp(1.16, -0.04, 30)};
   BlendParams params;  // defaults: offset, sigmoid, l_blend 4
-  for (const std::string curve : {"linear", "sigmoid"}) {
+  for (const BlendCurve curve : {BlendCurve::Linear, BlendCurve::Sigmoid}) {
     params.curve = curve;
     for (const std::vector<double>& b : rights) {
       const Motion left = arm_motion(a), right = arm_motion(b);
       const Motion out = blend_concatenate({left, right}, params);
       ASSERT_EQ(out.frame_count, 60);
       const double inputs = std::max(max_step(hand_path(a), 20, 30), max_step(hand_path(b), 0, 10));
-      EXPECT_LE(max_step(motion_forward_kinematics(out), 20, 40), inputs * (1.0 + 1e-9)) << curve << " from " << b[0];
+      EXPECT_LE(max_step(motion_forward_kinematics(out), 20, 40), inputs * (1.0 + 1e-9)) << enum_name(kBlendCurveNames, curve) << " from " << b[0];
       // Away from the junction the pieces are untouched.
       EXPECT_LT(rotation_angle_between(out.rotation(10, 1), left.rotation(10, 1)), 1e-9);
       EXPECT_LT(rotation_angle_between(out.rotation(50, 1), right.rotation(20, 1)), 1e-9);
@@ -264,7 +264,7 @@ TEST(Blend, GapAlongTheMotionIsSpreadEvenly) {
   // Right starts 0.12 rad ahead of where left was heading: that gap must be covered somewhere;
   // linear offset blending adds exactly 0.12 / (L_l + L_r + 1) to each of the 9 steps.
   BlendParams params;
-  params.curve = "linear";
+  params.curve = BlendCurve::Linear;
   params.l_blend = 4;
   const Eigen::MatrixXd p =
       motion_forward_kinematics(blend_concatenate({arm_motion(ramp(0.0, 0.04, 30)), arm_motion(ramp(1.32, 0.04, 30))}, params));
@@ -282,8 +282,8 @@ TEST(Blend, CrossfadeSpreadsTheJump) {
   // v + (g + n v) / (n + 1): the 0.3 rad jump is spread over the window.
   const std::vector<double> a = ramp(0.0, 0.04, 30);
   BlendParams params;
-  params.mode = "crossfade";
-  params.curve = "linear";
+  params.mode = BlendMode::Crossfade;
+  params.curve = BlendCurve::Linear;
   params.l_blend = 4;
   const int n = 8;
   const double v = 0.04, g = 0.3, radius = 30.0;
@@ -304,17 +304,17 @@ TEST(Blend, QuaternionsTakeTheShortArc) {
   std::vector<double> a(10, 0.3), b(10, 0.35);
   Motion left = arm_motion(a), right = arm_motion(b);
   for (int f = 0; f < right.frame_count; ++f) right.rotations[right.index(f, 1)] = -right.rotations[right.index(f, 1)];
-  for (const std::string mode : {"offset", "crossfade"}) {
+  for (const BlendMode mode : {BlendMode::Offset, BlendMode::Crossfade}) {
     BlendParams params;
     params.mode = mode;
     const Motion out = blend_concatenate({left, right}, params);
     for (int f = 1; f < out.frame_count; ++f)
-      EXPECT_LT(rotation_angle_between(out.rotation(f, 1), out.rotation(f - 1, 1)), 0.05 + 1e-9) << mode << " " << f;
+      EXPECT_LT(rotation_angle_between(out.rotation(f, 1), out.rotation(f - 1, 1)), 0.05 + 1e-9) << enum_name(kBlendModeNames, mode) << " " << f;
   }
 }
 
 TEST(Blend, WeightsRiseStrictlyInsideZeroOne) {
-  for (const std::string curve : {"linear", "sigmoid"}) {
+  for (const BlendCurve curve : {BlendCurve::Linear, BlendCurve::Sigmoid}) {
     double previous = 0.0;
     for (int i = 0; i < 8; ++i) {
       const double w = blend_weight(i, 8, curve);
@@ -439,7 +439,7 @@ TEST(RealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {
       EXPECT_TRUE(seg.accepted || seg.fallback == Fallback::HoldLastFrame) << c.audio;
       counted += seg.fallback != Fallback::None;
     }
-    EXPECT_EQ(r.plan.failures, 0);
+    EXPECT_EQ(r.plan.failure_count(), 0);
     const auto& fb = r.report["totals"]["fallbacks"];
     EXPECT_EQ(counted, fb["keyword_to_rhythm"].get<int>() + fb["ignore_stops"].get<int>() + fb["hold_last_frame"].get<int>());
   }

@@ -93,7 +93,7 @@ std::vector<AblationRow> ablation_run(const std::string& motion, const std::stri
       row.syn.push_back(metric_syn(pos, truth_pos, whole.fps));
       row.bc.push_back(metric_bc(pos, whole.fps, beats, metric_params));
       row.div.push_back(metric_div(pos, whole.fps, metric_params));
-      row.failures.push_back(r.plan.failures);
+      row.failures.push_back(r.plan.failure_count());
     }
     rows.push_back(row);
   }

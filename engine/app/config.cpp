@@ -89,6 +89,18 @@ Accessor string_key(const char* name, const char* help, T Config::*group, std::s
           [=](const Config& c) { return (c.*group).*field; }};
 }
 
+// A mode chosen by name from the enum's table (engine/core/enum_names.h).
+template <typename T, typename E, std::size_t N>
+Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*field), const EnumName<E> (&table)[N]) {
+  return {{name, help},
+          [=, &table](Config& c, const std::string& v) {
+            const std::optional<E> e = enum_from_name(table, v);
+            if (!e) throw Error(std::string("config key '") + name + "': '" + v + "' is not " + enum_choices(table));
+            (c.*group).*field = *e;
+          },
+          [=, &table](const Config& c) { return std::string(enum_name(table, (c.*group).*field)); }};
+}
+
 const std::vector<Accessor>& accessors() {
   static const std::vector<Accessor> table = {
       number_key("lambda_pos", "weight of joint positions in the pose distance", &Config::graph, &GraphParams::lambda_pos),
@@ -119,11 +131,13 @@ const std::vector<Accessor>& accessors() {
       int_key("retries", "retries with new start nodes before a fallback", &Config::search, &SearchParams::retries),
       number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search, &SearchParams::max_length_factor),
       bool_key("fallbacks", "use the termination fallbacks (false: count failures)", &Config::search, &SearchParams::fallbacks),
-      string_key("init", "start nodes: feature or random (weak initialisation)", &Config::search, &SearchParams::init),
+      enum_key("init", "start nodes: feature or random (weak initialisation)", &Config::search, &SearchParams::init,
+               kInitModeNames),
       int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search, &SearchParams::ignore_rounds),
       int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
-      string_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve),
-      string_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)", &Config::blend, &BlendParams::mode),
+      enum_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve, kBlendCurveNames),
+      enum_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)",
+               &Config::blend, &BlendParams::mode, kBlendModeNames),
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
        [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_list(v); },
        [](const Config& c) {

@@ -132,11 +132,11 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   rep["subsequences"] = list;
   rep["totals"] = {{"subsequences", r.plan.segments.size()},
                    {"accepted", accepted},
-                   {"failures", r.plan.failures},
+                   {"failures", r.plan.failure_count()},
                    {"fallbacks",
-                    {{"keyword_to_rhythm", r.plan.fallback_counts[static_cast<int>(Fallback::KeywordToRhythm)]},
-                     {"ignore_stops", r.plan.fallback_counts[static_cast<int>(Fallback::IgnoreStops)]},
-                     {"hold_last_frame", r.plan.fallback_counts[static_cast<int>(Fallback::HoldLastFrame)]}}}};
+                    {{"keyword_to_rhythm", r.plan.fallback_count(Fallback::KeywordToRhythm)},
+                     {"ignore_stops", r.plan.fallback_count(Fallback::IgnoreStops)},
+                     {"hold_last_frame", r.plan.fallback_count(Fallback::HoldLastFrame)}}}};
   return r;
 }
 

@@ -6,9 +6,9 @@
 
 namespace gmg {
 
-double blend_weight(int i, int n, const std::string& curve) {
+double blend_weight(int i, int n, BlendCurve curve) {
   const double x = static_cast<double>(i + 1) / static_cast<double>(n + 1);
-  if (curve == "linear") return x;
+  if (curve == BlendCurve::Linear) return x;
   auto logistic = [](double t) { return 1.0 / (1.0 + std::exp(-10.0 * (t - 0.5))); };
   const double lo = logistic(1.0 / (n + 1)), hi = logistic(static_cast<double>(n) / (n + 1));
   if (hi - lo < 1e-12) return x;
@@ -127,7 +127,7 @@ Motion blend_concatenate(const std::vector<Motion>& pieces, const BlendParams& p
     if (k > 0 && filled > 0 && right.frame_count > 0 && params.l_blend > 0) {
       const int ll = std::min(params.l_blend, filled);
       const int lr = std::min(params.l_blend, right.frame_count);
-      if (params.mode == "crossfade")
+      if (params.mode == BlendMode::Crossfade)
         crossfade_junction(out, filled, ll, lr, params);
       else
         offset_junction(out, filled, ll, lr, right.frame_count, params);

@@ -9,8 +9,8 @@
 namespace gmg {
 
 // Blend weight i of n (i = 0..n-1), rising from near 0 to near 1: linear (i+1)/(n+1) or a
-// logistic curve (steepness 10) rescaled to the same end points. curve is "linear" or "sigmoid".
-double blend_weight(int i, int n, const std::string& curve);
+// logistic curve (steepness 10) rescaled to the same end points.
+double blend_weight(int i, int n, BlendCurve curve);
 
 // Frames of `source` at the path's frames, resampled evenly to exactly `length` frames
 // (SLERP for rotations, linear for translations between neighbouring path frames).

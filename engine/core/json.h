@@ -1,0 +1,24 @@
+// JSON in and out, with the engine's error wording ("path: what").
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace gmg {
+
+// Parses the whole file as JSON. Throws gmg::Error naming the file: "path: byte N: invalid JSON
+// (...)", or "path: byte N: number out of range" for literals such as 1e309 (nlohmann would
+// otherwise throw its own out_of_range exception with no file in it).
+nlohmann::json read_json_file(const std::string& path);
+nlohmann::ordered_json read_ordered_json_file(const std::string& path);
+
+// Same for text already in memory; `name` labels errors.
+nlohmann::json parse_json_text(const std::string& text, const std::string& name);
+
+// Serialises without ever throwing on bytes: invalid UTF-8 in a string is replaced by U+FFFD.
+// indent < 0 gives one line.
+std::string json_dump(const nlohmann::ordered_json& j, int indent = 2);
+std::string json_dump(const nlohmann::json& j, int indent = 2);
+
+}  // namespace gmg

@@ -1,0 +1,49 @@
+// Small text utilities shared by every module: one copy of each.
+//
+// All of them are byte-oriented and locale-independent: "lower case" and "white space" mean
+// ASCII only, so UTF-8 text passes through unchanged.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gmg {
+
+// Removes leading and trailing ASCII white space (space, tab, CR, LF, FF, VT).
+std::string_view trim(std::string_view s);
+
+// ASCII lower case of s (other bytes unchanged).
+std::string ascii_lower(std::string_view s);
+
+// True when s ends with suffix, comparing ASCII letters case-insensitively.
+bool ends_with_ci(std::string_view s, std::string_view suffix);
+
+// Splits on `separator`, trims every piece and drops the empty ones: "a, b,,c " -> {a, b, c}.
+std::vector<std::string> split_trimmed(std::string_view s, char separator);
+
+// Splits text into lines on "\n", removing a trailing "\r" of each line (CRLF files). A final
+// line without "\n" is kept; a final empty line after the last "\n" is not.
+std::vector<std::string> split_lines(const std::string& text);
+
+// True when the text starts with the UTF-8 byte-order mark EF BB BF (all three bytes).
+bool has_utf8_bom(std::string_view s);
+
+// s without a leading UTF-8 byte-order mark (unchanged when it has none).
+std::string_view strip_utf8_bom(std::string_view s);
+
+// Parses a whole field (after trimming) as a finite decimal number ("1.5", "-2", "+3e-1", ".5"),
+// locale-independently. nullopt for an empty field, trailing garbage, NaN or infinity.
+std::optional<double> parse_number(std::string_view field);
+
+// The shortest text that reads back as exactly v ("0.2", "1e-05", "20231009"); "nan"/"inf" as
+// such. Used wherever a number is printed for a human or a config file.
+std::string format_number(double v);
+
+// Valid UTF-8 copy of s: every byte that does not start a well-formed UTF-8 sequence (including
+// overlong forms and surrogates) becomes U+FFFD. Text headed for JSON goes through this so a
+// Latin-1 file name can never make a writer throw.
+std::string to_valid_utf8(std::string_view s);
+
+}  // namespace gmg
