@@ -1,8 +1,8 @@
 #include "search/planner.h"
 
 #include <algorithm>
-#include <cmath>
-#include <numeric>
+
+#include "search/initialisation.h"
 
 namespace gmg {
 
@@ -11,34 +11,20 @@ int Plan::fallback_count(Fallback f) const {
       std::count_if(segments.begin(), segments.end(), [f](const PlannedSegment& s) { return s.fallback == f; }));
 }
 
-int Plan::fallback_total() const {
-  return static_cast<int>(segments.size()) - fallback_count(Fallback::None);
-}
+int Plan::fallback_total() const { return static_cast<int>(segments.size()) - fallback_count(Fallback::None); }
 
 int Plan::failure_count() const {
   return static_cast<int>(
       std::count_if(segments.begin(), segments.end(), [](const PlannedSegment& s) { return s.failure; }));
 }
 
-std::vector<double> key_feature(const std::vector<int>& keys, std::size_t i, int l_feat) {
-  std::vector<double> f(static_cast<std::size_t>(l_feat), 0.0);
-  auto key = [&](std::size_t j) { return j < keys.size() ? keys[j] : keys.back(); };
-  for (int e = 0; e < l_feat; ++e) f[static_cast<std::size_t>(e)] = key(i + e + 1) - key(i + e);
-  return f;
-}
-
 namespace {
 
+// The state of one job's planning: the graph, the ranking index and the generator.
 class Planner {
  public:
   Planner(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params, std::mt19937_64& rng)
-      : g_(g), subs_(subs), params_(params), rng_(rng), keys_(g.key_frames()),
-        occurrences_(keys_.size(), 0) {
-    for (std::size_t i = 0; i < keys_.size(); ++i) key_features_.push_back(key_feature(keys_, i, params.l_feat));
-    test_keys_.reserve(subs.size() + 1);
-    for (const Subsequence& s : subs) test_keys_.push_back(s.start);
-    if (!subs.empty()) test_keys_.push_back(subs.back().start + subs.back().length);
-  }
+      : g_(g), subs_(subs), params_(params), rng_(rng), index_(initialisation_prepare(g, subs, params)) {}
 
   Plan run() {
     Plan plan;
@@ -54,36 +40,6 @@ class Planner {
   }
 
  private:
-  // Start nodes for attempt `round` of the feature ranking of subsequence k: ranks
-  // [round * l_npaths, (round + 1) * l_npaths), then random frames once key nodes run out.
-  std::vector<int> start_nodes(std::size_t k, int round) {
-    const std::size_t width = static_cast<std::size_t>(params_.l_npaths);
-    std::vector<int> out;
-    if (params_.init == InitMode::Feature && !keys_.empty()) {
-      const std::vector<double> ft = key_feature(test_keys_, k, params_.l_feat);
-      std::vector<double> distance(keys_.size());
-      for (std::size_t m = 0; m < keys_.size(); ++m) {
-        const std::vector<double>& fm = key_features_[m];
-        double full = 0.0;
-        for (int e = 0; e < params_.l_feat; ++e) {
-          const double d = params_.w_full[static_cast<std::size_t>(e)] * (ft[static_cast<std::size_t>(e)] - fm[static_cast<std::size_t>(e)]);
-          full += d * d;
-        }
-        const double first = ft[0] > 0 ? std::abs(1.0 - fm[0] / ft[0]) : 0.0;
-        distance[m] = params_.lambda_full * std::sqrt(full) + params_.lambda_first * first +
-                      params_.lambda_occ * occurrences_[m];
-      }
-      std::vector<std::size_t> order(keys_.size());
-      std::iota(order.begin(), order.end(), 0);
-      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
-      for (std::size_t r = static_cast<std::size_t>(round) * width; r < order.size() && out.size() < width; ++r)
-        out.push_back(keys_[order[r]]);
-    }
-    while (out.size() < width)
-      out.push_back(static_cast<int>(random_below(rng_, static_cast<std::uint64_t>(g_.frame_count()))));
-    return out;
-  }
-
   std::vector<int> successors(int frame) const {
     std::vector<int> out;
     for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(frame), g_.graph); it != end; ++it)
@@ -100,7 +56,7 @@ class Planner {
       if (attempt == 0 && !first_starts.empty()) {
         request.start_nodes = first_starts;
       } else {
-        request.start_nodes = start_nodes(k, round++);
+        request.start_nodes = initialisation_start_nodes(g_, index_, k, round++, params_, rng_);
       }
       if (attempt > 0) ++*retries;
       BeamResult r = beam_search(g_, request, params_);
@@ -116,8 +72,7 @@ class Planner {
     seg.accepted = true;
     seg.path = r.path;
     seg.cost = r.cost;
-    const auto it = std::lower_bound(keys_.begin(), keys_.end(), r.path.front());
-    if (it != keys_.end() && *it == r.path.front()) ++occurrences_[static_cast<std::size_t>(it - keys_.begin())];
+    initialisation_count_use(index_, r.path.front());
   }
 
   // A fallback's searches (each one counts as a retry); on success records it in seg.
@@ -137,35 +92,32 @@ class Planner {
     request.target_length = seg.sub.length;
     request.kind = seg.sub.kind;
     request.keyword = seg.sub.keyword;
+    // Paper 4.2.2: after a clean result, the next search starts from the children of its last node.
     std::vector<int> continuation;
     if (previous_clean && !previous_path.empty()) continuation = successors(previous_path.back());
-    BeamResult r = attempts(k, request, continuation, &seg.retries, &seg.continued);
+    const BeamResult r = attempts(k, request, continuation, &seg.retries, &seg.continued);
     if (r.accepted) {
       accept(seg, r);
       return seg;
     }
     if (params_.fallbacks) {
-      // 1: a keyword that cannot be matched falls back to rhythm termination.
       if (request.kind == Termination::Keyword) {
-        request.kind = Termination::Rhythm;
-        request.keyword.clear();
+        request = fallback_rhythm_request(request);
         if (try_fallback(k, request, Fallback::KeywordToRhythm, seg)) return seg;
       }
-      // 2: paths stop too early: ignore a growing share of the stopping nodes.
       for (int round = 1; round <= params_.ignore_rounds; ++round) {
-        const double share = static_cast<double>(round) / (params_.ignore_rounds + 1);
-        request.ignore_stop.assign(static_cast<std::size_t>(g_.frame_count()), 0);
-        for (int f : keys_)
-          if (static_cast<double>(rng_() >> 11) * 0x1.0p-53 < share) request.ignore_stop[static_cast<std::size_t>(f)] = 1;
-        if (try_fallback(k, request, Fallback::IgnoreStops, seg)) return seg;
+        const BeamRequest ignoring =
+            fallback_ignore_stops_request(request, index_.keys, g_.frame_count(), round, params_.ignore_rounds, rng_);
+        if (try_fallback(k, ignoring, Fallback::IgnoreStops, seg)) return seg;
       }
       seg.fallback = Fallback::HoldLastFrame;
     } else {
       seg.failure = true;
     }
-    // 3 (and the failure case, which must still produce frames): hold the previous result's
-    // last frame, or for the very first subsequence the best start node.
-    const int hold = !previous_path.empty() ? previous_path.back() : start_nodes(k, 0).front();
+    // Fallback 3 (and the failure case, which must still produce frames): hold the previous
+    // result's last frame, or for the very first subsequence the best start node.
+    const int hold = !previous_path.empty() ? previous_path.back()
+                                            : initialisation_start_nodes(g_, index_, k, 0, params_, rng_).front();
     seg.path.assign(1, hold);
     return seg;
   }
@@ -174,16 +126,14 @@ class Planner {
   const std::vector<Subsequence>& subs_;
   const SearchParams& params_;
   std::mt19937_64& rng_;
-  std::vector<int> keys_;
-  std::vector<std::vector<double>> key_features_;
-  std::vector<int> occurrences_;
-  std::vector<int> test_keys_;
+  StartNodeIndex index_;
 };
 
 }  // namespace
 
 Plan plan_reenactment(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params,
                       std::mt19937_64& rng) {
+  search_params_validate(params);
   return Planner(g, subs, params, rng).run();
 }
 

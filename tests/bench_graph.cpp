@@ -13,7 +13,8 @@
 #include "audio/wav.h"
 #include "engine/app/pipeline.h"
 #include "engine/app/synth/synth.h"
-#include "graph/motion_graph.h"
+#include "graph/build.h"
+#include "graph/stats.h"
 #include "tests/test_support.h"
 
 using namespace gmg;

@@ -14,7 +14,8 @@
 #include "engine/core/files.h"
 #include "engine/app/pipeline.h"
 #include "engine/app/synth/synth.h"
-#include "graph/motion_graph.h"
+#include "graph/graph_io.h"
+#include "graph/stats.h"
 
 namespace gmg {
 namespace {

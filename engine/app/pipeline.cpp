@@ -1,5 +1,7 @@
 #include "engine/app/pipeline.h"
 
+#include "engine/app/report.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -7,6 +9,7 @@
 #include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/assemble/blend.h"
+#include "engine/assemble/resample.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/cleanup.h"
 #include "engine/core/error.h"
@@ -57,11 +60,6 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     in.motion = bvh_read(c.motion);
     motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                            config.cleanup.smooth_order, c.motion);
-    if (!inputs.empty()) {
-      std::string why;
-      if (!skeletons_match(inputs.front().motion.skeleton, in.motion.skeleton, &why))
-        throw Error(c.motion + ": skeleton differs from " + inputs.front().name + "'s: " + why);
-    }
     const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
     in.onset_frames = ev.onset_frames;
     in.keyword_frames = ev.keyword_frames;
@@ -77,22 +75,6 @@ Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams
   return blend_concatenate(pieces, params);
 }
 
-namespace {
-
-// Contiguous runs of a path: [[first, last], ...] in graph frames.
-nlohmann::ordered_json frame_ranges(const std::vector<int>& path) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < path.size();) {
-    std::size_t j = i;
-    while (j + 1 < path.size() && path[j + 1] == path[j] + 1) ++j;
-    out.push_back({path[i], path[j]});
-    i = j + 1;
-  }
-  return out;
-}
-
-}  // namespace
-
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config) {
   config_validate(config);
   std::mt19937_64 rng(config.seed);
@@ -101,42 +83,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   r.plan = plan_reenactment(g, subs, config.search, rng);
   r.motion = assemble_motion(g, r.plan, config.blend);
 
-  nlohmann::ordered_json& rep = r.report;
-  rep["frames"] = events.total_frames;
-  rep["fps"] = g.motion.fps;
-  rep["duration_s"] = events.duration_s;
-  rep["seed"] = config.seed;
-  rep["parameters"] = nlohmann::ordered_json::parse(config_to_json(config));
-  rep["test_events"] = {{"onsets", events.onset_frames.size()},
-                        {"keywords", events.keyword_frames.size()},
-                        {"words", events.words}};
-  nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  int accepted = 0;
-  for (const PlannedSegment& s : r.plan.segments) {
-    nlohmann::ordered_json item;
-    item["start_frame"] = s.sub.start;
-    item["target_length"] = s.sub.length;
-    item["termination"] = s.sub.kind == Termination::Keyword ? "keyword" : "rhythm";
-    if (s.sub.kind == Termination::Keyword) item["keyword"] = s.sub.keyword;
-    item["accepted"] = s.accepted;
-    item["continued"] = s.continued;
-    item["retries"] = s.retries;
-    item["fallback"] = fallback_name(s.fallback);
-    item["failure"] = s.failure;
-    item["cost"] = s.cost;
-    item["path_length"] = s.path.size();
-    item["graph_ranges"] = frame_ranges(s.path);
-    list.push_back(item);
-    if (s.accepted) ++accepted;
-  }
-  rep["subsequences"] = list;
-  rep["totals"] = {{"subsequences", r.plan.segments.size()},
-                   {"accepted", accepted},
-                   {"failures", r.plan.failure_count()},
-                   {"fallbacks",
-                    {{"keyword_to_rhythm", r.plan.fallback_count(Fallback::KeywordToRhythm)},
-                     {"ignore_stops", r.plan.fallback_count(Fallback::IgnoreStops)},
-                     {"hold_last_frame", r.plan.fallback_count(Fallback::HoldLastFrame)}}}};
+  r.report = reenactment_report(r.plan, events, config, g.motion.fps);
   return r;
 }
 

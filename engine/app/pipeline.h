@@ -12,7 +12,7 @@
 #include "audio/wav.h"
 #include "engine/app/config.h"
 #include "engine/motion/motion.h"
-#include "graph/motion_graph.h"
+#include "graph/build.h"
 #include "search/planner.h"
 #include "text/keywords.h"
 #include "text/transcript.h"

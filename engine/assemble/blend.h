@@ -12,10 +12,6 @@ namespace gmg {
 // logistic curve (steepness 10) rescaled to the same end points.
 double blend_weight(int i, int n, BlendCurve curve);
 
-// Frames of `source` at the path's frames, resampled evenly to exactly `length` frames
-// (SLERP for rotations, linear for translations between neighbouring path frames).
-Motion resample_path(const Motion& source, const std::vector<int>& path, int length);
-
 // Concatenates pieces (same skeleton), blending every junction over the last L_l =
 // min(l_blend, len(left)) frames of the result so far and the first L_r = min(l_blend,
 // len(right)) frames of the right piece. The total frame count is the sum of the pieces'.

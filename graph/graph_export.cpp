@@ -1,0 +1,84 @@
+// GraphViz DOT and GraphML export of a frame range (Boost's writers).
+#include <boost/graph/graphml.hpp>
+#include <boost/graph/graphviz.hpp>
+#include <boost/property_map/dynamic_property_map.hpp>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "graph/graph_io.h"
+
+namespace gmg {
+namespace {
+
+// The subgraph of frames [from, to) as a fresh adjacency_list (vertex i = frame from + i).
+GraphStorage subgraph(const MotionGraph& g, int from, int to) {
+  if (from < 0 || to > g.frame_count() || from >= to)
+    throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) + " is outside the graph's 0:" +
+                std::to_string(g.frame_count()));
+  GraphStorage sub(static_cast<std::size_t>(to - from));
+  for (int f = from; f < to; ++f) sub[static_cast<std::size_t>(f - from)] = g.node(f);
+  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
+    const int a = static_cast<int>(boost::source(*it, g.graph));
+    const int b = static_cast<int>(boost::target(*it, g.graph));
+    if (a >= from && a < to && b >= from && b < to)
+      boost::add_edge(static_cast<std::size_t>(a - from), static_cast<std::size_t>(b - from), g.graph[*it], sub);
+  }
+  return sub;
+}
+
+std::string kind_names(std::uint8_t kinds) {
+  std::string s;
+  if (kinds & kOnsetNode) s += "onset ";
+  if (kinds & kKeywordNode) s += "keyword ";
+  if (kinds & kBreakNode) s += "break ";
+  if (!s.empty()) s.pop_back();
+  return s.empty() ? "regular" : s;
+}
+
+}  // namespace
+
+void graph_write_dot(const std::string& path, const MotionGraph& g, int from, int to) {
+  const GraphStorage sub = subgraph(g, from, to);
+  write_file_atomically(path, [&](std::ostream& out) {
+    boost::write_graphviz(
+        out, sub,
+        [&](std::ostream& os, std::size_t v) {
+          const NodeInfo& n = sub[v];
+          os << "[label=\"" << (from + static_cast<int>(v));
+          if (n.kinds & kKeywordNode) os << "\\n" << n.keyword;
+          os << "\"";
+          if (n.kinds & kBreakNode)
+            os << ", shape=box, color=red";
+          else if (n.kinds & kKeywordNode)
+            os << ", shape=doublecircle, color=blue";
+          else if (n.kinds & kOnsetNode)
+            os << ", shape=circle, color=darkgreen";
+          os << "]";
+        },
+        [&](std::ostream& os, const GraphStorage::edge_descriptor& e) {
+          if (sub[e].natural)
+            os << "[color=gray]";
+          else
+            os << "[color=orange, label=\"" << sub[e].weight << "\"]";
+        });
+  });
+}
+
+void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
+  GraphStorage sub = subgraph(g, from, to);
+  std::vector<int> frame(boost::num_vertices(sub));
+  std::vector<std::string> kinds(boost::num_vertices(sub));
+  for (std::size_t v = 0; v < frame.size(); ++v) {
+    frame[v] = from + static_cast<int>(v);
+    kinds[v] = kind_names(sub[v].kinds);
+  }
+  boost::dynamic_properties dp;
+  dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
+  dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
+  dp.property("keyword", boost::get(&NodeInfo::keyword, sub));
+  dp.property("weight", boost::get(&EdgeInfo::weight, sub));
+  dp.property("natural", boost::get(&EdgeInfo::natural, sub));
+  write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
+}
+
+}  // namespace gmg

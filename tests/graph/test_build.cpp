@@ -1,0 +1,83 @@
+// The whole graph construction: clips joined, breaks, natural and unnatural edges.
+#include <gtest/gtest.h>
+
+#include "engine/app/pipeline.h"
+#include "engine/core/error.h"
+#include "graph/build.h"
+#include "graph/stats.h"
+#include "tests/graph/fixtures.h"
+#include "tests/test_support.h"
+
+namespace gmg {
+namespace {
+
+using namespace gmg::testing;
+
+TEST(Graph, BuildJoinsClipsWithBreaksAndNoNaturalEdgeAcross) {
+  const MotionGraph g = two_clip_graph();
+  ASSERT_EQ(g.frame_count(), 180);
+  ASSERT_EQ(g.clips.size(), 2u);
+  EXPECT_TRUE(g.node(99).kinds & kBreakNode);
+  EXPECT_TRUE(g.node(179).kinds & kBreakNode);
+  EXPECT_TRUE(g.node(105).kinds & kOnsetNode);  // clip b's onset 5, offset 100
+  EXPECT_EQ(g.node(150).keyword, "big");
+  EXPECT_TRUE(g.node(20).kinds & kKeywordNode);
+  for (auto [it, end] = boost::out_edges(99, g.graph); it != end; ++it) EXPECT_FALSE(g.graph[*it].natural);
+  const GraphStats s = graph_stats(g);
+  EXPECT_EQ(s.onset_nodes, 5);
+  EXPECT_EQ(s.keyword_nodes, 3);
+  EXPECT_EQ(s.break_nodes, 2);
+  EXPECT_EQ(s.natural_edges, 178);
+  EXPECT_GT(s.unnatural_edges, 0);
+}
+
+TEST(Graph, SkeletonMismatchIsAnError) {
+  Motion other = line_motion(wave(30, 0));
+  other.skeleton.joints[1].name = "wrist";
+  ClipEvents a{"a.bvh", line_motion(wave(30, 0)), {}, {}};
+  ClipEvents b{"b.bvh", other, {}, {}};
+  try {
+    graph_build({a, b}, GraphParams{});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("b.bvh"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace gmg
+
+namespace gmg {
+namespace {
+
+TEST(GraphRealData, ScottHasOnsetAndKeywordNodesZeggsOnsetAndBreakOnly) {
+  GMG_REQUIRE_SHARED_DATA();
+  const std::string d = gmg::testing::shared_data_dir();
+  Config cfg;
+  const MotionGraph scott = graph_build_from_files(
+      {{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+      cfg);
+  const GraphStats s = graph_stats(scott);
+  EXPECT_EQ(s.frames, 1906);
+  EXPECT_EQ(s.onset_nodes, 115);  // librosa's count for this recording (reference_onsets)
+  EXPECT_GT(s.keyword_nodes, 20);
+  EXPECT_GE(s.break_nodes, 1);
+  EXPECT_GT(s.unnatural_edges, 0);
+  const MotionGraph zeggs = graph_build_from_files(
+      {{d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}}, cfg);
+  const GraphStats z = graph_stats(zeggs);
+  EXPECT_EQ(z.frames, 2065);
+  EXPECT_EQ(z.keyword_nodes, 0);
+  EXPECT_GT(z.onset_nodes, 120);  // librosa finds 130, a few fall past the last motion frame
+  EXPECT_LE(z.onset_nodes, 130);
+  EXPECT_GE(z.break_nodes, 1);
+  EXPECT_TRUE(zeggs.node(2064).kinds & kBreakNode);
+  // Two clips with different skeletons cannot share a graph.
+  EXPECT_THROW(graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", ""}},
+                                       {d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}},
+                                      cfg),
+               Error);
+}
+
+}  // namespace
+}  // namespace gmg
