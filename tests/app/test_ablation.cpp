@@ -35,6 +35,12 @@ TEST(Ablation, FiveSetupsScoredOverSeeds) {
   const std::string md = ablation_markdown(rows);
   EXPECT_NE(md.find("| No Term. Fallback |"), std::string::npos);
   EXPECT_NE(ablation_csv(rows).find("setup,syn_mean"), std::string::npos);
+  // Each weakened setup must change the result: the same numbers as the full row would mean the
+  // ablation silently ran the full setup.
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+    EXPECT_TRUE(rows[i].syn != rows[4].syn || rows[i].failures != rows[4].failures) << rows[i].setup;
+  }
+  EXPECT_GT(rows[3].failures[0] + rows[3].failures[1], 0) << "without fallbacks some subsequence fails";
   EXPECT_THROW(ablation_run(dir.file("clip.bvh"), dir.file("clip.wav"), "", 0.95, {1}, Config{}), Error);
 }
 

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/motion/bvh.h"
+#include "graph/graph_io.h"
 #include "graph/stats.h"
 #include "tests/test_support.h"
 
@@ -66,21 +67,44 @@ TEST_F(SynthPipeline, SameSeedGivesByteIdenticalOutput) {
   EXPECT_EQ(m.frame_count, 15 * 30);
 }
 
+// The seed reaches every random choice: with random start nodes (init=random) two seeds give two
+// different motions, and the same seed the same one. Fails if the pipeline ignores config.seed.
+TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
+  const MotionGraph g = graph_load(file("ref.gmg"));
+  Config cfg;
+  cfg.search.init = InitMode::Random;
+  const SpeechEvents ev = speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph,
+                                         lexicon_for(cfg.graph));
+  auto motion_bytes = [&](std::uint64_t seed) {
+    cfg.seed = seed;
+    return bvh_format(reenact_events(g, ev, cfg).motion);
+  };
+  EXPECT_NE(motion_bytes(1), motion_bytes(2));
+  EXPECT_EQ(motion_bytes(3), motion_bytes(3));
+}
+
 TEST_F(SynthPipeline, ReportCountsEverySubsequence) {
-  ASSERT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "-o", file("r.bvh"), "--report",
-                     file("r.json")}),
+  ASSERT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript", file("test.tsv"),
+                     "-o", file("r.bvh"), "--report", file("r.json")}),
             0);
   const nlohmann::json r = nlohmann::json::parse(read_file_bytes(file("r.json")));
-  int accepted = 0, fallbacks = 0;
-  for (const auto& s : r["subsequences"]) {
-    EXPECT_TRUE(s.contains("graph_ranges"));
-    accepted += s["accepted"].get<bool>();
-    fallbacks += s["fallback"] != "none";
-    EXPECT_TRUE(s["accepted"].get<bool>() || s["fallback"] == "hold_last_frame");
+  // The same job in process: the report must describe this plan, segment by segment.
+  const Reenactment direct = reenact(graph_load(file("ref.gmg")), {file("test.wav"), file("test.tsv")}, Config{}, "g");
+  const std::vector<PlannedSegment>& segs = direct.plan.segments;
+  ASSERT_EQ(r["subsequences"].size(), segs.size());
+  int with_fallback = 0;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const auto& s = r["subsequences"][i];
+    EXPECT_EQ(s["fallback"], fallback_name(segs[i].fallback)) << i;
+    EXPECT_EQ(s["accepted"].get<bool>(), segs[i].accepted) << i;
+    EXPECT_EQ(s["continued"].get<bool>(), segs[i].continued) << i;
+    EXPECT_EQ(s["target_length"].get<int>(), segs[i].sub.length) << i;
+    with_fallback += segs[i].fallback != Fallback::None;
   }
-  EXPECT_EQ(accepted, r["totals"]["accepted"].get<int>());
-  EXPECT_EQ(r["inputs"]["transcript"], nullptr);
-  EXPECT_EQ(r["totals"]["subsequences"].get<std::size_t>(), r["subsequences"].size());
+  EXPECT_GT(with_fallback, 0) << "the synthetic test speech has keywords the reference lacks";
+  EXPECT_EQ(r["totals"]["fallbacks"]["keyword_to_rhythm"].get<int>(), direct.plan.fallback_count(Fallback::KeywordToRhythm));
+  EXPECT_EQ(r["totals"]["subsequences"].get<std::size_t>(), segs.size());
+  EXPECT_EQ(r["inputs"]["transcript"], file("test.tsv"));
 }
 
 TEST_F(SynthPipeline, BadInputsFailWithoutOutput) {

@@ -42,6 +42,25 @@ TEST_F(Evaluate, AgainstItselfSynIsZeroAndSkipsAreNoted) {
   EXPECT_GT(k["generated"]["jerk_cm_s3"].get<double>(), 0.0);
 }
 
+// Syn compares the generated motion with the truth it is given: against another recording it is
+// the mean speed difference of the two, computed here independently of evaluate_files.
+TEST_F(Evaluate, SynIsMeasuredAgainstTheGivenTruth) {
+  EvaluateInputs in;
+  in.generated = dir.file("a.bvh");
+  in.truth = dir.file("b.bvh");
+  const auto j = evaluate_files(in, MetricParams{});
+  const Motion a = bvh_read(dir.file("a.bvh")), b = bvh_read(dir.file("b.bvh"));
+  const Eigen::MatrixXd pa = motion_forward_kinematics(a), pb = motion_forward_kinematics(b);  // synth is in cm
+  double sum = 0.0;
+  for (Eigen::Index t = 1; t < pa.rows(); ++t)
+    for (Eigen::Index k = 0; k < pa.cols() / 3; ++k)
+      sum += std::abs((pa.block<1, 3>(t, 3 * k) - pa.block<1, 3>(t - 1, 3 * k)).norm() -
+                      (pb.block<1, 3>(t, 3 * k) - pb.block<1, 3>(t - 1, 3 * k)).norm());
+  const double expected = sum / static_cast<double>((pa.rows() - 1) * (pa.cols() / 3)) * a.fps;
+  EXPECT_GT(expected, 1.0);
+  EXPECT_NEAR(j["syn"].get<double>(), expected, 1e-9 * expected);
+}
+
 TEST_F(Evaluate, SkeletonAndLengthMismatchAreClearErrors) {
   // Length: a shorter clip of the same skeleton.
   Motion a = bvh_read(dir.file("a.bvh"));
