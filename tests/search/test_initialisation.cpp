@@ -1,4 +1,7 @@
 // Feature-based initialisation: key features, d_feat ranking, occurrences, random fallback.
+#include <cmath>
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include "search/initialisation.h"
@@ -12,6 +15,55 @@ using namespace gmg::testing;
 TEST(Initialisation, KeyFeatureHasTrailingZeros) {
   const std::vector<double> f = key_feature({0, 5, 12, 20}, 1, 4);
   EXPECT_EQ(f, (std::vector<double>{7, 8, 0, 0}));
+}
+
+// Graph keys 0 10 20 40 70 and the clip end 79 (a break node); features with l_feat 2:
+// [10 10] [10 20] [20 30] [30 9] [9 0] [0 0]. Test keys 0 20 40 70: subsequence 0's feature is
+// [20 20]. With w_full [1 1], lambda_first 1 and no occurrences yet:
+//   key 0:  |(10,10)-(20,20)| = 14.14 + |1 - 10/20| = 0.5   -> 14.64
+//   key 10: |(10,20)-(20,20)| = 10    + 0.5                 -> 10.5
+//   key 20: |(20,30)-(20,20)| = 10    + 0                   -> 10
+//   key 40: |(30,9)-(20,20)|  = 14.87 + 0.5                 -> 15.37
+//   key 70: |(9,0)-(20,20)|   = 22.83 + 0.55                -> 23.38
+//   key 79: |(0,0)-(20,20)|   = 28.28 + 1                   -> 29.28
+// so the ranking is 20, 10, 0, 40, 70, 79.
+TEST(Initialisation, RanksKeyNodesByFeatureDistance) {
+  const MotionGraph g = chain_graph(80, {0, 10, 20, 40, 70}, {}, {});
+  SearchParams p;
+  p.l_feat = 2;
+  p.w_full = {1, 1};
+  p.l_npaths = 3;
+  const std::vector<Subsequence> subs = {{0, 20, Termination::Rhythm, ""}, {20, 20, Termination::Rhythm, ""},
+                                         {40, 30, Termination::Rhythm, ""}};
+  StartNodeIndex index = initialisation_prepare(g, subs, p);
+  EXPECT_EQ(index.keys, (std::vector<int>{0, 10, 20, 40, 70, 79}));  // 79: the clip end (break)
+  EXPECT_NEAR(feature_distance(index, 0, 0, p), std::sqrt(200.0) + 0.5, 1e-12);
+  std::mt19937_64 rng(1);
+  EXPECT_EQ(initialisation_start_nodes(g, index, 0, 0, p, rng), (std::vector<int>{20, 10, 0}));
+  // The next round takes the next ranks; the occurrence count pushes a used node back.
+  const std::vector<int> second = initialisation_start_nodes(g, index, 0, 1, p, rng);
+  EXPECT_EQ(second.size(), 3u);
+  EXPECT_EQ(second[0], 40);
+  initialisation_count_use(index, 20);
+  p.lambda_occ = 100.0;
+  EXPECT_EQ(initialisation_start_nodes(g, index, 0, 0, p, rng), (std::vector<int>{10, 0, 40}));
+}
+
+TEST(Initialisation, RandomNodesAreSeededAndInRange) {
+  const MotionGraph g = chain_graph(50, {10, 20}, {}, {});
+  SearchParams p;
+  p.init = InitMode::Random;
+  const std::vector<Subsequence> subs = {{0, 10, Termination::Rhythm, ""}};
+  const StartNodeIndex index = initialisation_prepare(g, subs, p);
+  std::mt19937_64 a(7), b(7), c(8);
+  const std::vector<int> na = initialisation_start_nodes(g, index, 0, 0, p, a);
+  EXPECT_EQ(na.size(), 20u);
+  for (int f : na) {
+    EXPECT_GE(f, 0);
+    EXPECT_LT(f, 50);
+  }
+  EXPECT_EQ(na, initialisation_start_nodes(g, index, 0, 0, p, b));
+  EXPECT_NE(na, initialisation_start_nodes(g, index, 0, 0, p, c));
 }
 
 }  // namespace
