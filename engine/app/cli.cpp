@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "engine/app/ablation.h"
+#include "engine/app/ablation/ablation.h"
 #include "engine/app/batch/batch.h"
 #include "engine/motion/bvh.h"
 #include "engine/core/error.h"
@@ -201,25 +201,32 @@ int cli_main(int argc, char** argv) {
   add_batch_command(app, &exit_code);
 
   // ---- ablation ----
-  auto* abl = app.add_subcommand("ablation", "the paper's Table 2: split one recording in time, score five setups");
-  std::string abl_motion, abl_audio, abl_transcript, abl_csv;
-  double abl_share = 2.0 / 3.0;
+  auto* abl = app.add_subcommand("ablation",
+                                 "the paper's Table 2 with baselines: time folds of one recording, seven setups");
+  std::string abl_motion, abl_audio, abl_transcript, abl_csv, abl_hist = "overflow";
+  AblationOptions abl_opts;
   int abl_seeds = 5;
   ConfigOptions abl_cfg;
   abl->add_option("--motion", abl_motion, "recording's BVH")->required();
   abl->add_option("--audio", abl_audio, "its WAV")->required();
   abl->add_option("--transcript", abl_transcript, "its transcript (optional)");
-  abl->add_option("--reference-share", abl_share, "share of the recording used as reference (default 2/3)");
-  abl->add_option("--seeds", abl_seeds, "seeds per setup (1..)")->check(CLI::PositiveNumber);
+  abl->add_option("--folds", abl_opts.folds, "time folds: each K-th is the test part once (>= 2)")->capture_default_str();
+  abl->add_option("--seeds", abl_seeds, "seeds per setup and fold (1..)")->check(CLI::PositiveNumber)->capture_default_str();
+  abl->add_option("--hellinger", abl_hist, "speed histogram bins: overflow (ours) or genea")
+      ->check(CLI::IsMember({"overflow", "genea"}))
+      ->capture_default_str();
+  abl->add_option("--hist-width", abl_opts.metrics.hist_bin_width, "histogram bin width, cm/s")->capture_default_str();
   abl->add_option("--csv", abl_csv, "also write the table as CSV");
   abl_cfg.add(abl, false);
   abl->callback([&] {
-    std::vector<std::uint64_t> seeds;
-    for (int i = 0; i < abl_seeds; ++i) seeds.push_back(static_cast<std::uint64_t>(i + 1));
-    const auto rows = ablation_run(abl_motion, abl_audio, transcript_or_none(abl_transcript), abl_share, seeds, abl_cfg.make());
-    std::cout << ablation_markdown(rows);
+    abl_opts.seeds.clear();
+    for (int i = 0; i < abl_seeds; ++i) abl_opts.seeds.push_back(static_cast<std::uint64_t>(i + 1));
+    abl_opts.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, abl_hist);
+    const AblationResult result =
+        ablation_run({abl_motion, abl_audio, transcript_or_none(abl_transcript)}, abl_opts, abl_cfg.make());
+    std::cout << ablation_markdown(result);
     if (!abl_csv.empty()) {
-      const std::string csv = ablation_csv(rows);
+      const std::string csv = ablation_csv(result);
       write_file_atomically(abl_csv, [&](std::ostream& os) { os << csv; });
     }
   });

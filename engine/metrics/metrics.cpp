@@ -50,7 +50,9 @@ void check_params(const char* fn, const MetricParams& p) {
   if (!(std::isfinite(p.div_min_speed_frac) && p.div_min_speed_frac >= 0.0))
     bad("div_min_speed_frac must be >= 0");
   if (!(std::isfinite(p.hist_bin_width) && p.hist_bin_width > 0.0)) bad("hist_bin_width must be > 0");
-  if (p.hist_bin_count < 1) bad("hist_bin_count must be >= 1");
+  if (p.hist_bin_count < 1 || p.hist_bin_count > 100000) bad("hist_bin_count must be in [1, 100000]");
+  // Genea bins cover [0, 49]: a width below 49 / 100000 would allocate an absurd histogram.
+  if (p.hist_bins == HistogramBins::Genea && p.hist_bin_width < 49.0 / 100000) bad("hist_bin_width must be >= 0.00049");
 }
 
 // |p(t, j) - p(t-1, j)| * fps for t = 1..T-1: rows T-1, one column per joint.
@@ -209,20 +211,36 @@ double metric_hellinger_speed(const Eigen::MatrixXd& gen, const Eigen::MatrixXd&
       throw Error("metric_hellinger_speed: joint index " + std::to_string(j) + " is out of range [0, " +
                   std::to_string(jg) + ")");
 
-  const std::size_t bins = static_cast<std::size_t>(params.hist_bin_count) + 1;  // + overflow
+  // Bin edges: Overflow adds a last bin for everything faster; Genea uses numpy's
+  // arange(0, 49 + w, w) as edges, a closed last bin, and drops what lies beyond.
+  const bool genea = params.hist_bins == HistogramBins::Genea;
+  const double w = params.hist_bin_width;
+  const std::size_t genea_edges = static_cast<std::size_t>(std::ceil((49.0 + w) / w - 1e-12));
+  const std::size_t bins = genea ? genea_edges - 1 : static_cast<std::size_t>(params.hist_bin_count) + 1;
+  const double genea_top = static_cast<double>(genea_edges - 1) * w;
   auto histogram = [&](const Eigen::MatrixXd& pos) {
     const Eigen::MatrixXd speed = backward_speeds(pos, fps);
     std::vector<double> h(bins, 0.0);
+    double total = 0.0;
     for (int j : selected)
       for (Eigen::Index t = 0; t < speed.rows(); ++t) {
-        const double k = std::floor(speed(t, j) / params.hist_bin_width);
-        h[k >= static_cast<double>(bins - 1) ? bins - 1 : static_cast<std::size_t>(k)] += 1.0;
+        const double v = speed(t, j);
+        const double k = std::floor(v / w);
+        if (genea) {
+          if (v > genea_top) continue;
+          h[std::min(bins - 1, static_cast<std::size_t>(k))] += 1.0;  // v == top falls in the last bin
+        } else {
+          h[k >= static_cast<double>(bins - 1) ? bins - 1 : static_cast<std::size_t>(k)] += 1.0;
+        }
+        total += 1.0;
       }
-    const double total = static_cast<double>(speed.rows()) * static_cast<double>(selected.size());
-    for (double& x : h) x /= total;
-    return h;
+    if (total > 0.0)
+      for (double& x : h) x /= total;
+    return std::make_pair(h, total > 0.0);
   };
-  const std::vector<double> p = histogram(gen), q = histogram(truth);
+  const auto [p, p_any] = histogram(gen);
+  const auto [q, q_any] = histogram(truth);
+  if (!p_any || !q_any) return p_any == q_any ? 0.0 : 1.0;
   // 1 - sum sqrt(p q) = sum (sqrt p - sqrt q)^2 / 2 when both sum to 1; this form is exactly 0
   // for identical histograms, where 1 - sum would leave ~1e-16 of rounding (H ~ 1e-8).
   double h2 = 0.0;
