@@ -10,7 +10,7 @@
 #include "engine/app/batch/batch.h"
 #include "engine/motion/bvh.h"
 #include "engine/core/error.h"
-#include "engine/metrics/evaluate.h"
+#include "engine/app/evaluate_files.h"
 #include "engine/core/files.h"
 #include "engine/app/pipeline.h"
 #include "engine/app/synth/synth.h"
@@ -179,22 +179,29 @@ int cli_main(int argc, char** argv) {
   // ---- evaluate ----
   auto* ev = app.add_subcommand("evaluate", "objective metrics of a generated motion");
   EvaluateInputs ev_in;
+  EvaluateOptions ev_opts;
   bool ev_json = false;
-  std::string ev_out;
+  std::string ev_out, ev_hist = "overflow";
   ev->add_option("--generated", ev_in.generated, "generated BVH")->required();
   ev->add_option("--truth", ev_in.truth, "ground-truth BVH (same skeleton and length)");
-  ev->add_option("--audio", ev_in.audio, "the speech WAV (for beat consistency)");
-  ev->add_option("--report", ev_in.report, "the reenactment report (for failures and fallbacks)");
+  ev->add_option("--audio", ev_in.audio, "the speech WAV (beat consistency and speech correlation, with a control)");
+  ev->add_option("--report", ev_in.report, "the reenactment report (failures, fallbacks, transitions, junctions)");
+  ev->add_option("--reference", ev_in.reference,
+                 "the reference capture, BVH or graph (.gmg): jump threshold, and ratios when there is no truth");
+  ev->add_flag("--trim", ev_in.trim, "cut the longer of generated and truth to the shorter (with a warning)");
+  ev->add_option("--hellinger", ev_hist, "speed histogram bins: overflow (ours) or genea")
+      ->check(CLI::IsMember({"overflow", "genea"}))
+      ->capture_default_str();
+  ev->add_option("--hist-width", ev_opts.metrics.hist_bin_width, "histogram bin width, cm/s")->capture_default_str();
+  ev->add_option("--plot", ev_in.plot, "draw speeds, onset strength, onsets and junctions over time (.png or .svg)");
   ev->add_flag("--json", ev_json, "print one JSON object on standard output");
   ev->add_option("-o,--output", ev_out, "also write the JSON to this file");
   ev->callback([&] {
-    const nlohmann::ordered_json j = evaluate_files(ev_in, MetricParams{});
-    if (!ev_out.empty()) write_json_file(ev_out, j);
-    if (ev_json) {
-      std::cout << j.dump() << "\n";
-    } else {
-      std::cout << j.dump(2) << "\n";
-    }
+    ev_opts.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, ev_hist);
+    const EvaluateResult r = evaluate_files(ev_in, ev_opts);
+    for (const std::string& w : r.warnings) std::cerr << "gmg: warning: " << w << "\n";
+    if (!ev_out.empty()) write_json_file(ev_out, r.json);
+    std::cout << (ev_json ? r.json.dump() : r.json.dump(2)) << "\n";
   });
 
   // ---- batch ----

@@ -1,13 +1,12 @@
 #include "engine/metrics/evaluate.h"
 
 #include <algorithm>
-#include <cctype>
+#include <cmath>
 
-#include "audio/onset.h"
-#include "audio/wav.h"
-#include "engine/motion/bvh.h"
 #include "engine/core/error.h"
-#include "engine/core/files.h"
+#include "engine/core/strings.h"
+#include "engine/metrics/naturalness.h"
+#include "engine/metrics/sync.h"
 
 namespace gmg {
 
@@ -22,96 +21,142 @@ double length_unit_to_cm(const Skeleton& skeleton) {
 }
 
 std::vector<int> wrist_joints(const Skeleton& skeleton) {
-  auto lower = [](std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-  };
   std::vector<int> out;
   for (int j = 0; j < skeleton.joint_count(); ++j)
-    if (lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
+    if (ascii_lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
   if (out.empty())
-    for (int j = 0; j < skeleton.joint_count(); ++j) {
-      const std::string n = lower(skeleton.joints[j].name);
-      if (n.size() >= 4 && n.compare(n.size() - 4, 4, "hand") == 0) out.push_back(j);
-    }
+    for (int j = 0; j < skeleton.joint_count(); ++j)
+      if (ends_with_ci(skeleton.joints[j].name, "hand")) out.push_back(j);
   return out;
 }
 
-nlohmann::ordered_json evaluate_motions(const Motion& generated, const std::string& generated_name, const Motion* truth,
-                                        const std::string& truth_name, const std::vector<double>* audio_beats_s,
-                                        const MetricParams& params) {
+namespace {
+
+nlohmann::ordered_json controlled_json(const ControlledScore& s, const std::vector<double>& shifts) {
+  return {{"aligned", s.aligned}, {"shifted", s.shifted},        {"shifts_s", shifts},
+          {"shifted_mean", s.shifted_mean()}, {"shifted_sd", s.shifted_sd()}, {"lift", s.lift()}};
+}
+
+void check_against(const Motion& generated, const std::string& gen_name, const Motion& other,
+                   const std::string& other_name, bool same_length) {
+  std::string why;
+  if (!skeletons_match(generated.skeleton, other.skeleton, &why))
+    throw Error(gen_name + " and " + other_name + " have different skeletons: " + why);
+  if (same_length && generated.frame_count != other.frame_count)
+    throw Error(gen_name + " has " + std::to_string(generated.frame_count) + " frames but " + other_name + " has " +
+                std::to_string(other.frame_count) +
+                ": metrics against the truth need equal lengths (evaluate --trim cuts the longer one)");
+  if (std::abs(generated.fps - other.fps) > 1e-6)
+    throw Error(gen_name + " and " + other_name + " have different frame rates");
+}
+
+// What the motion needs to be scored at all: jerk takes 4 frames.
+void check_length(const Motion& m, const std::string& name) {
+  if (m.frame_count < 4)
+    throw Error(name + ": " + std::to_string(m.frame_count) + " frame" + (m.frame_count == 1 ? "" : "s") +
+                ", the metrics need at least 4 (jerk is a third difference)");
+}
+
+}  // namespace
+
+nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const EvaluateOptions& options) {
+  if (!data.generated) throw Error("evaluate: no generated motion");
+  const Motion& generated = *data.generated;
+  check_length(generated, data.generated_name);
+  const MetricParams& mp = options.metrics;
   nlohmann::ordered_json out;
+  nlohmann::ordered_json notes = nlohmann::ordered_json::array();
   const double scale = length_unit_to_cm(generated.skeleton);
   const double fps = generated.fps;
   const Eigen::MatrixXd gen = motion_forward_kinematics(generated) * scale;
   out["frames"] = generated.frame_count;
   out["fps"] = fps;
   out["units"] = "cm";
-  nlohmann::ordered_json notes = nlohmann::ordered_json::array();
-  out["generated"] = {{"jerk_cm_s3", metric_jerk(gen, fps)}, {"acceleration_cm_s2", metric_acceleration(gen, fps)},
-                      {"div", metric_div(gen, fps, params)}};
-  if (audio_beats_s) {
-    out["bc"] = metric_bc(gen, fps, *audio_beats_s, params);
-  } else {
-    notes.push_back("bc skipped: no --audio");
+  out["generated"] = {{"jerk_cm_s3", metric_jerk(gen, fps)},
+                      {"acceleration_cm_s2", metric_acceleration(gen, fps)},
+                      {"div", metric_div(gen, fps, mp)}};
+
+  Eigen::MatrixXd tru;
+  if (data.truth) {
+    check_against(generated, data.generated_name, *data.truth, data.truth_name, true);
+    tru = motion_forward_kinematics(*data.truth) * scale;
   }
-  if (truth) {
-    std::string why;
-    if (!skeletons_match(generated.skeleton, truth->skeleton, &why))
-      throw Error(generated_name + " and " + truth_name + " have different skeletons: " + why);
-    if (generated.frame_count != truth->frame_count)
-      throw Error(generated_name + " has " + std::to_string(generated.frame_count) + " frames but " + truth_name +
-                  " has " + std::to_string(truth->frame_count) + ": metrics against the truth need equal lengths");
-    if (std::abs(generated.fps - truth->fps) > 1e-6)
-      throw Error(generated_name + " and " + truth_name + " have different frame rates");
-    const Eigen::MatrixXd tru = motion_forward_kinematics(*truth) * scale;
+  if (data.audio) {
+    if (data.audio->duration() >= 2.0 * options.min_shift_s + 1.0) {
+      const SyncControl control = sync_control(*data.audio, options.control_shifts, options.min_shift_s);
+      const ControlledScore bc = bc_controlled(gen, fps, control, mp);
+      out["bc"] = bc.aligned;
+      out["bc_control"] = controlled_json(bc, control.shifts_s);
+      out["speech_correlation"] = controlled_json(speech_correlation_controlled(gen, fps, control), control.shifts_s);
+      if (data.truth) {
+        out["truth_sync"] = {{"bc", controlled_json(bc_controlled(tru, fps, control, mp), control.shifts_s)},
+                             {"speech_correlation",
+                              controlled_json(speech_correlation_controlled(tru, fps, control), control.shifts_s)}};
+      }
+    } else {
+      out["bc"] = metric_bc(gen, fps, speech_track(*data.audio).onset_times_s, mp);
+      notes.push_back("sync control skipped: the audio is shorter than " +
+                      format_number(2.0 * options.min_shift_s + 1.0) + " s");
+    }
+  } else {
+    notes.push_back("bc and speech correlation skipped: no --audio");
+  }
+
+  if (data.truth) {
     out["syn"] = metric_syn(gen, tru, fps);
-    out["truth"] = {{"jerk_cm_s3", metric_jerk(tru, fps)}, {"acceleration_cm_s2", metric_acceleration(tru, fps)},
-                    {"div", metric_div(tru, fps, params)}};
-    if (audio_beats_s) out["truth"]["bc"] = metric_bc(tru, fps, *audio_beats_s, params);
-    out["hellinger_speed_all"] = metric_hellinger_speed(gen, tru, fps, {}, params);
+    out["truth"] = {{"jerk_cm_s3", metric_jerk(tru, fps)},
+                    {"acceleration_cm_s2", metric_acceleration(tru, fps)},
+                    {"div", metric_div(tru, fps, mp)}};
+    out["hellinger_bins"] = enum_name(kHistogramBinsNames, mp.hist_bins);
+    out["hellinger_bin_width"] = mp.hist_bin_width;
+    out["hellinger_speed_all"] = metric_hellinger_speed(gen, tru, fps, {}, mp);
     const std::vector<int> wrists = wrist_joints(generated.skeleton);
     if (!wrists.empty()) {
-      out["hellinger_speed_wrists"] = metric_hellinger_speed(gen, tru, fps, wrists, params);
+      out["hellinger_speed_wrists"] = metric_hellinger_speed(gen, tru, fps, wrists, mp);
     } else {
       notes.push_back("hellinger_speed_wrists skipped: no joint named *wrist* or *hand");
     }
   } else {
     notes.push_back("syn, hellinger and truth metrics skipped: no --truth");
   }
+
+  // Naturalness: ratios to the truth when there is one, else to the reference; the jump threshold
+  // from the reference (longer, and what the output was made of) when there is one.
+  std::vector<double> ref_steps;
+  Eigen::MatrixXd ref_pos;
+  for (const Motion* clip : data.reference) {
+    check_against(generated, data.generated_name, *clip, data.reference_name, false);
+    const Eigen::MatrixXd p = motion_forward_kinematics(*clip) * scale;
+    const std::vector<double> s = frame_steps(p);
+    ref_steps.insert(ref_steps.end(), s.begin(), s.end());
+    if (ref_pos.size() == 0 || p.rows() > ref_pos.rows()) ref_pos = p;  // the longest clip for the ratios
+  }
+  if (data.truth || !ref_steps.empty()) {
+    const bool ratios_from_truth = data.truth != nullptr;
+    NaturalnessReference nr = naturalness_reference(ratios_from_truth ? tru : ref_pos, fps);
+    if (!ref_steps.empty()) nr.step_p999 = percentile(ref_steps, 99.9);
+    const Naturalness n = naturalness(gen, fps, nr);
+    out["naturalness"] = {{"ratios_against", ratios_from_truth ? "truth" : "reference"},
+                          {"steps_against", ref_steps.empty() ? "truth" : "reference"},
+                          {"jerk_ratio", n.jerk_ratio},
+                          {"acc_ratio", n.acc_ratio},
+                          {"root_speed_ratio", n.root_speed_ratio},
+                          {"jump_ratio", n.jump_ratio},
+                          {"step_share", n.step_share},
+                          {"step_p999_cm", nr.step_p999}};
+  } else {
+    notes.push_back("naturalness skipped: no --truth or --reference");
+  }
+  if (data.source_frames) {
+    const int transitions = source_transitions(*data.source_frames);
+    if (out.contains("naturalness")) {
+      out["naturalness"]["transitions_per_s"] = transitions_per_second(transitions, generated.duration());
+    } else {
+      out["naturalness"] = {{"transitions_per_s", transitions_per_second(transitions, generated.duration())}};
+    }
+  }
   out["notes"] = notes;
   return out;
-}
-
-nlohmann::ordered_json evaluate_files(const EvaluateInputs& in, const MetricParams& params) {
-  const Motion generated = bvh_read(in.generated);
-  Motion truth;
-  if (!in.truth.empty()) truth = bvh_read(in.truth);
-  std::vector<double> beats;
-  if (!in.audio.empty()) beats = audio::detect_onsets(audio::read_wav(in.audio), audio::OnsetParams{}).onset_times();
-  nlohmann::ordered_json out =
-      evaluate_motions(generated, in.generated, in.truth.empty() ? nullptr : &truth, in.truth,
-                       in.audio.empty() ? nullptr : &beats, params);
-  nlohmann::ordered_json inputs = {{"generated", in.generated}};
-  if (!in.truth.empty()) inputs["truth"] = in.truth;
-  if (!in.audio.empty()) inputs["audio"] = in.audio;
-  if (!in.report.empty()) {
-    inputs["report"] = in.report;
-    nlohmann::json rep;
-    try {
-      rep = nlohmann::json::parse(read_file_bytes(in.report));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw Error(error_at_byte(in.report, static_cast<long long>(e.byte), "invalid JSON"));
-    }
-    if (!rep.contains("totals") || !rep["totals"].contains("failures"))
-      throw Error(in.report + ": not a gmg reenactment report (no totals.failures)");
-    out["failures"] = rep["totals"]["failures"];
-    out["fallbacks"] = rep["totals"]["fallbacks"];
-  }
-  nlohmann::ordered_json full;
-  full["inputs"] = inputs;
-  for (auto it = out.begin(); it != out.end(); ++it) full[it.key()] = it.value();
-  return full;
 }
 
 }  // namespace gmg

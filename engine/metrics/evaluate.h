@@ -1,21 +1,17 @@
-// `gmg evaluate`: the objective metrics of engine/metrics.h over files, as one JSON object.
+// The objective evaluation of one generated motion (engine/metrics: metrics, naturalness, sync),
+// in memory, as one JSON object. `gmg evaluate` (engine/app/evaluate_files.h) reads the files.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "audio/wav.h"
 #include "engine/metrics/metrics.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
-
-struct EvaluateInputs {
-  std::string generated;   // BVH (required)
-  std::string truth;       // BVH, same skeleton and frame count; "" = skip the metrics needing it
-  std::string audio;       // WAV of the speech; "" = skip BC
-  std::string report;      // reenactment report JSON; "" = skip failure/fallback counts
-};
 
 // Positions are compared in centimetres: a skeleton whose rest pose is under 5 units tall is
 // taken to be in metres (BEAT2) and scaled by 100, others are taken as centimetres (GENEA, ZEGGS).
@@ -24,12 +20,30 @@ double length_unit_to_cm(const Skeleton& skeleton);
 // Joint indices of the wrists: names containing "wrist", else names ending in "hand".
 std::vector<int> wrist_joints(const Skeleton& skeleton);
 
-// Metrics of motions in memory (positions computed here). truth may be null; audio_beats may be
-// null. Throws gmg::Error on skeleton or length mismatch, naming both files.
-nlohmann::ordered_json evaluate_motions(const Motion& generated, const std::string& generated_name, const Motion* truth,
-                                        const std::string& truth_name, const std::vector<double>* audio_beats_s,
-                                        const MetricParams& params);
+struct EvaluateData {
+  const Motion* generated = nullptr;          // required
+  std::string generated_name;
+  const Motion* truth = nullptr;              // same skeleton, frame count and fps; null = skip
+  std::string truth_name;
+  std::vector<const Motion*> reference;       // the reference capture's clips (same skeleton); empty = none
+  std::string reference_name;
+  const audio::Audio* audio = nullptr;        // the speech; null = skip the sync metrics
+  const std::vector<int>* source_frames = nullptr;  // graph frames the output was read from (report); null = skip
+};
 
-nlohmann::ordered_json evaluate_files(const EvaluateInputs& in, const MetricParams& params);
+struct EvaluateOptions {
+  MetricParams metrics;
+  int control_shifts = 8;      // circular shifts of the audio for the sync control
+  double min_shift_s = 2.0;
+};
+
+// frames, fps, units; generated {jerk, acceleration, div}; bc and bc_control {aligned, shifted,
+// shifted_mean, shifted_sd, lift}, speech_correlation (same form) when audio is given; syn,
+// truth {...}, hellinger_speed_all / _wrists when the truth is given; naturalness {jerk_ratio,
+// acc_ratio, root_speed_ratio against the truth, else the reference; jump_ratio, step_share
+// against the reference's 99.9th percentile step, else the truth's; transitions_per_s when the
+// source frames are given}; notes (what was skipped and why). Throws gmg::Error naming both files
+// on a skeleton, length or frame-rate mismatch, and naming the motion when it is too short.
+nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const EvaluateOptions& options);
 
 }  // namespace gmg

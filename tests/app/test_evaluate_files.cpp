@@ -1,9 +1,12 @@
-// gmg evaluate over files: inputs, skipped metrics, mismatch errors.
+// gmg evaluate over files: inputs, skipped metrics, naturalness, trimming, plots, mismatch errors.
+#include <filesystem>
+
 #include <gtest/gtest.h>
 
 #include "engine/motion/bvh.h"
 #include "engine/core/error.h"
-#include "engine/metrics/evaluate.h"
+#include "engine/core/files.h"
+#include "engine/app/evaluate_files.h"
 #include "engine/app/synth/synth.h"
 #include "tests/test_support.h"
 
@@ -28,17 +31,17 @@ TEST_F(Evaluate, AgainstItselfSynIsZeroAndSkipsAreNoted) {
   in.generated = dir.file("a.bvh");
   in.truth = dir.file("a.bvh");
   in.audio = dir.file("a.wav");
-  const auto j = evaluate_files(in, MetricParams{});
+  const auto j = evaluate_files(in, EvaluateOptions{}).json;
   EXPECT_EQ(j["syn"].get<double>(), 0.0);
   EXPECT_EQ(j["hellinger_speed_all"].get<double>(), 0.0);
   EXPECT_TRUE(j.contains("bc"));
   EXPECT_TRUE(j.contains("hellinger_speed_wrists"));  // the synthetic skeleton has hands
   EvaluateInputs alone;
   alone.generated = dir.file("b.bvh");
-  const auto k = evaluate_files(alone, MetricParams{});
+  const auto k = evaluate_files(alone, EvaluateOptions{}).json;
   EXPECT_FALSE(k.contains("syn"));
   EXPECT_FALSE(k.contains("bc"));
-  EXPECT_EQ(k["notes"].size(), 2u);
+  EXPECT_EQ(k["notes"].size(), 3u);  // no audio, no truth, no truth or reference for naturalness
   EXPECT_GT(k["generated"]["jerk_cm_s3"].get<double>(), 0.0);
 }
 
@@ -48,7 +51,7 @@ TEST_F(Evaluate, SynIsMeasuredAgainstTheGivenTruth) {
   EvaluateInputs in;
   in.generated = dir.file("a.bvh");
   in.truth = dir.file("b.bvh");
-  const auto j = evaluate_files(in, MetricParams{});
+  const auto j = evaluate_files(in, EvaluateOptions{}).json;
   const Motion a = bvh_read(dir.file("a.bvh")), b = bvh_read(dir.file("b.bvh"));
   const Eigen::MatrixXd pa = motion_forward_kinematics(a), pb = motion_forward_kinematics(b);  // synth is in cm
   double sum = 0.0;
@@ -61,6 +64,58 @@ TEST_F(Evaluate, SynIsMeasuredAgainstTheGivenTruth) {
   EXPECT_NEAR(j["syn"].get<double>(), expected, 1e-9 * expected);
 }
 
+TEST_F(Evaluate, NaturalnessAgainstTruthOrReference) {
+  EvaluateInputs in;
+  in.generated = dir.file("a.bvh");
+  in.truth = dir.file("a.bvh");
+  const auto self = evaluate_files(in, EvaluateOptions{}).json;
+  EXPECT_EQ(self["naturalness"]["ratios_against"], "truth");
+  EXPECT_NEAR(self["naturalness"]["jerk_ratio"].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(self["naturalness"]["root_speed_ratio"].get<double>(), 1.0, 1e-12);
+  // Against another speaker's capture as the reference, without truth.
+  EvaluateInputs ref;
+  ref.generated = dir.file("a.bvh");
+  ref.reference = dir.file("b.bvh");
+  const auto j = evaluate_files(ref, EvaluateOptions{}).json;
+  EXPECT_EQ(j["naturalness"]["ratios_against"], "reference");
+  EXPECT_EQ(j["naturalness"]["steps_against"], "reference");
+  EXPECT_GT(j["naturalness"]["jerk_ratio"].get<double>(), 0.0);
+  EXPECT_NE(j["naturalness"]["jerk_ratio"].get<double>(), 1.0);
+}
+
+TEST_F(Evaluate, TrimCutsTheLongerClipAndSaysBy) {
+  const Motion a = bvh_read(dir.file("a.bvh"));
+  bvh_write(dir.file("short.bvh"), motion_slice(a, 0, 298));
+  EvaluateInputs in;
+  in.generated = dir.file("a.bvh");
+  in.truth = dir.file("short.bvh");
+  in.trim = true;
+  const EvaluateResult r = evaluate_files(in, EvaluateOptions{});
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("cut 2 frame(s)"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("a.bvh"), std::string::npos) << r.warnings[0];
+  EXPECT_EQ(r.json["frames"].get<int>(), 298);
+  EXPECT_EQ(r.json["syn"].get<double>(), 0.0);  // the same motion once cut
+}
+
+TEST_F(Evaluate, PlotsPngAndSvg) {
+  EvaluateInputs in;
+  in.generated = dir.file("a.bvh");
+  in.truth = dir.file("b.bvh");
+  in.audio = dir.file("a.wav");
+  in.plot = dir.file("p.png");
+  evaluate_files(in, EvaluateOptions{});
+  const std::string png = read_file_bytes(dir.file("p.png"));
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  in.plot = dir.file("p.svg");
+  evaluate_files(in, EvaluateOptions{});
+  EXPECT_NE(read_file_bytes(dir.file("p.svg")).find("<svg"), std::string::npos);
+  in.plot = dir.file("p.jpg");
+  EXPECT_THROW(evaluate_files(in, EvaluateOptions{}), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p.jpg")));
+}
+
 TEST_F(Evaluate, SkeletonAndLengthMismatchAreClearErrors) {
   // Length: a shorter clip of the same skeleton.
   Motion a = bvh_read(dir.file("a.bvh"));
@@ -69,7 +124,7 @@ TEST_F(Evaluate, SkeletonAndLengthMismatchAreClearErrors) {
   in.generated = dir.file("a.bvh");
   in.truth = dir.file("short.bvh");
   try {
-    evaluate_files(in, MetricParams{});
+    evaluate_files(in, EvaluateOptions{}).json;
     FAIL();
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -81,7 +136,7 @@ TEST_F(Evaluate, SkeletonAndLengthMismatchAreClearErrors) {
   bvh_write(dir.file("other.bvh"), a);
   in.truth = dir.file("other.bvh");
   try {
-    evaluate_files(in, MetricParams{});
+    evaluate_files(in, EvaluateOptions{}).json;
     FAIL();
   } catch (const Error& e) {
     const std::string what = e.what();

@@ -1,0 +1,31 @@
+// `gmg evaluate` over files: reads the motions, the speech, the report and the reference, runs
+// evaluate_motions (engine/metrics/evaluate.h) and optionally draws the picture (plot.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/metrics/evaluate.h"
+
+namespace gmg {
+
+struct EvaluateInputs {
+  std::string generated;   // BVH (required)
+  std::string truth;       // BVH, same skeleton and frame count; "" = skip the metrics needing it
+  std::string audio;       // the speech (WAV); "" = skip the sync metrics
+  std::string report;      // reenactment report JSON; "" = skip failures, fallbacks and transitions
+  std::string reference;   // the reference capture: a BVH or a graph (.gmg); "" = none
+  bool trim = false;       // cut the longer of generated and truth to the shorter (a warning says by how much)
+  std::string plot;        // write a picture (.png or .svg); "" = none
+};
+
+struct EvaluateResult {
+  nlohmann::ordered_json json;
+  std::vector<std::string> warnings;  // for standard error, e.g. what --trim cut
+};
+
+EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options);
+
+}  // namespace gmg
