@@ -1,13 +1,13 @@
 #include "engine/metrics/evaluate.h"
 
 #include <algorithm>
-#include <cctype>
 
 #include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/motion/bvh.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 
@@ -22,16 +22,12 @@ double length_unit_to_cm(const Skeleton& skeleton) {
 }
 
 std::vector<int> wrist_joints(const Skeleton& skeleton) {
-  auto lower = [](std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-  };
   std::vector<int> out;
   for (int j = 0; j < skeleton.joint_count(); ++j)
-    if (lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
+    if (ascii_lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
   if (out.empty())
     for (int j = 0; j < skeleton.joint_count(); ++j) {
-      const std::string n = lower(skeleton.joints[j].name);
+      const std::string n = ascii_lower(skeleton.joints[j].name);
       if (n.size() >= 4 && n.compare(n.size() - 4, 4, "hand") == 0) out.push_back(j);
     }
   return out;
