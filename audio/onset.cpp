@@ -8,7 +8,9 @@
 #include <cmath>
 #include <string>
 
+#include "audio/resample.h"
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg::audio {
 
@@ -19,7 +21,6 @@ constexpr int kHop = OnsetAnalysis::kHop;
 constexpr int kNfft = OnsetAnalysis::kNfft;
 constexpr int kMels = OnsetAnalysis::kMels;
 constexpr int kBins = kNfft / 2 + 1;
-constexpr double kPi = 3.14159265358979323846;
 
 // librosa's Slaney mel scale (htk=False): linear below 1 kHz, log above.
 constexpr double kFsp = 200.0 / 3.0;
