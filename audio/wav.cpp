@@ -142,7 +142,8 @@ Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::
   if (f.channels == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 2), "zero channels"));
   if (rate == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 4), "zero sample rate"));
   if (rate > 0x7FFFFFFFu) {
-    throw Error(error_at_byte(path, static_cast<long long>(body + 4), "sample rate " + std::to_string(rate) + " is out of range"));
+    throw Error(error_at_byte(path, static_cast<long long>(body + 4),
+                              "sample rate " + std::to_string(rate) + " is out of range"));
   }
   f.sample_rate = static_cast<int>(rate);
   return f;
@@ -208,8 +209,9 @@ Audio read_wav(const std::string& path) {
     // Chunks are word aligned: an odd-sized chunk is followed by a pad byte.
     pos = body + size + (size & 1u);
   }
-  if (!have_fmt) throw Error(error_at_byte(path, static_cast<long long>(std::min(pos, file_size)), "no 'fmt ' chunk in the file"));
-  if (!have_data) throw Error(error_at_byte(path, static_cast<long long>(std::min(pos, file_size)), "no 'data' chunk in the file"));
+  const long long end = static_cast<long long>(std::min(pos, file_size));
+  if (!have_fmt) throw Error(error_at_byte(path, end, "no 'fmt ' chunk in the file"));
+  if (!have_data) throw Error(error_at_byte(path, end, "no 'data' chunk in the file"));
 
   const std::uint64_t bytes_per_sample = static_cast<std::uint64_t>(fmt.bits / 8);
   const std::uint64_t frame_bytes = bytes_per_sample * static_cast<std::uint64_t>(fmt.channels);
@@ -277,10 +279,12 @@ Audio read_wav(const std::string& path, int target_rate) {
 
 void write_wav_pcm16(const std::string& path, const Audio& a) {
   if (a.sample_rate <= 0) {
-    throw Error(error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) + " is not positive"));
+    throw Error(error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) +
+                                           " is not positive"));
   }
   const std::uint64_t data_bytes = 2ull * a.samples.size();
-  if (data_bytes + 36 > 0xFFFFFFFFull) throw Error(error_at_line(path, 0, "cannot write WAV: too many samples for RIFF"));
+  if (data_bytes + 36 > 0xFFFFFFFFull)
+    throw Error(error_at_line(path, 0, "cannot write WAV: too many samples for RIFF"));
   std::vector<unsigned char> out;
   out.reserve(static_cast<std::size_t>(44 + data_bytes));
   auto put = [&out](const char* s) { out.insert(out.end(), s, s + 4); };

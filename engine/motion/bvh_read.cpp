@@ -162,7 +162,8 @@ bool parse_frame_line(const char* begin, const char* end, std::vector<double>& v
   }
   if (values.empty()) return false;
   if (static_cast<int>(values.size()) != expected)
-    throw Error(error_at_line(name, line, "frame has " + std::to_string(values.size()) + " values but the hierarchy declares " +
+    throw Error(error_at_line(name, line, "frame has " + std::to_string(values.size()) +
+                                              " values but the hierarchy declares " +
                                               std::to_string(expected) + " channels"));
   return true;
 }
@@ -173,7 +174,9 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
   Tokenizer tok(text, name);
   std::string t = tok.next();
   t = std::string(strip_utf8_bom(t));
-  if (t != "HIERARCHY") tok.fail(t.empty() ? "empty file, expected HIERARCHY" : "not a BVH file: expected HIERARCHY, found '" + t.substr(0, 40) + "'");
+  if (t != "HIERARCHY")
+    tok.fail(t.empty() ? "empty file, expected HIERARCHY"
+                       : "not a BVH file: expected HIERARCHY, found '" + t.substr(0, 40) + "'");
   tok.expect("ROOT");
   Motion m;
   parse_joint(tok, m.skeleton, -1);
@@ -182,7 +185,8 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
   if (t != "MOTION") tok.fail("expected MOTION, found '" + t + "'");
   tok.expect("Frames:");
   const double frames = tok.number("Frames");
-  if (frames < 0 || frames != std::floor(frames) || frames > 1e8) tok.fail("invalid frame count " + std::to_string(frames));
+  if (frames < 0 || frames != std::floor(frames) || frames > 1e8)
+    tok.fail("invalid frame count " + std::to_string(frames));
   m.frame_count = static_cast<int>(frames);
   if (m.frame_count == 0) tok.fail("the file has zero frames");
   tok.expect("Frame");

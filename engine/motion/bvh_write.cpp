@@ -53,7 +53,8 @@ std::string bvh_format(const Motion& m) {
       const Joint& joint = sk.joints[j];
       if (joint.channels.empty()) continue;
       const bool hinted = !m.euler_hints.empty();
-      const glm::dvec3 angles = hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order, m.euler_hints[m.index(f, j)])
+      const glm::dvec3 angles = hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order,
+                                                                m.euler_hints[m.index(f, j)])
                                        : quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
       previous[j] = angles;
       const glm::dvec3& t = m.translation(f, j);

@@ -30,7 +30,8 @@ Eigen::VectorXd fit_and_evaluate(const Eigen::VectorXd& y, int order, const Eige
 }  // namespace
 
 std::vector<double> savgol_filter(const std::vector<double>& x, int window, int order) {
-  if (window % 2 == 0 || window <= order) throw Error("Savitzky-Golay: the window must be odd and larger than the order");
+  if (window % 2 == 0 || window <= order)
+    throw Error("Savitzky-Golay: the window must be odd and larger than the order");
   const int n = static_cast<int>(x.size());
   if (n < window) window = n % 2 == 1 ? n : n - 1;
   if (window <= order) return x;
@@ -97,7 +98,8 @@ void motion_lock_and_smooth(Motion& m, const std::vector<std::string>& joints, i
       twist[static_cast<std::size_t>(f)] = angle;
     }
     const std::vector<double> smooth = savgol_filter(twist, window, order);
-    for (int f = 0; f < m.frame_count; ++f) m.rotations[m.index(f, j)] = glm::angleAxis(smooth[static_cast<std::size_t>(f)], axis);
+    for (int f = 0; f < m.frame_count; ++f)
+      m.rotations[m.index(f, j)] = glm::angleAxis(smooth[static_cast<std::size_t>(f)], axis);
   }
   if (!joints.empty()) m.euler_hints.clear();  // the rotations no longer match the file's angles
 }
