@@ -83,7 +83,8 @@ void expect_onsets_near(const OnsetAnalysis& r, const std::vector<double>& times
   ASSERT_EQ(got.size(), times.size());
   const double frame = 512.0 / 22050.0;
   for (std::size_t i = 0; i < times.size(); ++i) {
-    EXPECT_LE(std::fabs(got[i] - times[i]), frame + 1e-9) << "onset " << i << " at " << got[i] << " s, expected " << times[i];
+    EXPECT_LE(std::fabs(got[i] - times[i]), frame + 1e-9)
+        << "onset " << i << " at " << got[i] << " s, expected " << times[i];
   }
 }
 

@@ -69,7 +69,8 @@ TEST(Resample, SineKeepsFrequencyAndAmplitude) {
 
   // Downsampling 44100 -> 22050 (up 1, down 2) too.
   std::vector<float> x2(44100);
-  for (std::size_t i = 0; i < x2.size(); ++i) x2[i] = static_cast<float>(0.5 * std::sin(2 * kPi * 1000.0 * i / 44100.0));
+  for (std::size_t i = 0; i < x2.size(); ++i)
+    x2[i] = static_cast<float>(0.5 * std::sin(2 * kPi * 1000.0 * i / 44100.0));
   const std::vector<float> y2 = gmg::audio::resample_poly(x2, 44100, 22050);
   ASSERT_EQ(y2.size(), 22050u);
   max_err = 0.0;

@@ -13,7 +13,7 @@
 
 #include "audio/wav.h"
 #include "engine/core/error.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
 namespace {
@@ -389,7 +389,8 @@ TEST(Wav, WritePcm16RoundTrip) {
   TempDir dir;
   Audio a;
   a.sample_rate = 22050;
-  for (int i = 0; i < 1001; ++i) a.samples.push_back(static_cast<float>(std::lround(10000 * std::sin(i * 0.01))) / 32768.0f);
+  for (int i = 0; i < 1001; ++i)
+    a.samples.push_back(static_cast<float>(std::lround(10000 * std::sin(i * 0.01))) / 32768.0f);
   a.samples.push_back(2.0f);   // clipped
   a.samples.push_back(-2.0f);  // clipped
   const std::string path = dir.file("out.wav");

@@ -7,7 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
 namespace gmg {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/core/json.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
 namespace gmg {

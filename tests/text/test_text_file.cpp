@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/core/error.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 #include "tests/text/text_test_util.h"
 #include "text/text_file.h"

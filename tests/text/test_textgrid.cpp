@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 #include "tests/text/text_test_util.h"
 #include "text/transcript.h"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "tests/core/expect_error.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 #include "tests/text/text_test_util.h"
 #include "text/transcript.h"
@@ -34,7 +34,8 @@ TEST(TextFormat, ByExtensionAndExplicit) {
   write_text(dir.file("a.txt"), "0\t1\ttxt\n");
   write_text(dir.file("a.TextGrid"), kLongTextGrid);
   write_text(dir.file("b.textgrid"), kLongTextGrid);
-  write_text(dir.file("a.json"), R"([{"alternatives":[{"words":[{"start_time":"0s","end_time":"1s","word":"json"}]}]}])");
+  write_text(dir.file("a.json"),
+             R"([{"alternatives":[{"words":[{"start_time":"0s","end_time":"1s","word":"json"}]}]}])");
   EXPECT_EQ(tx::read_transcript(dir.file("a.tsv")).at(0).text, "tsv");
   EXPECT_EQ(tx::read_transcript(dir.file("a.txt")).at(0).text, "txt");
   EXPECT_EQ(tx::read_transcript(dir.file("a.TextGrid")).at(0).text, "very");
@@ -43,7 +44,8 @@ TEST(TextFormat, ByExtensionAndExplicit) {
 
   write_text(dir.file("words.dat"), "0\t1\tdat\n");
   write_text(dir.file("grid.dat"), kLongTextGrid);
-  write_text(dir.file("google.dat"), R"([{"alternatives":[{"words":[{"start_time":"0s","end_time":"1s","word":"g"}]}]}])");
+  write_text(dir.file("google.dat"),
+             R"([{"alternatives":[{"words":[{"start_time":"0s","end_time":"1s","word":"g"}]}]}])");
   EXPECT_EQ(tx::read_transcript(dir.file("words.dat"), tx::TranscriptFormat::Tsv).at(0).text, "dat");
   EXPECT_EQ(tx::read_transcript(dir.file("grid.dat"), tx::TranscriptFormat::TextGrid).size(), 3u);
   EXPECT_EQ(tx::read_transcript(dir.file("google.dat"), tx::TranscriptFormat::Json).at(0).text, "g");

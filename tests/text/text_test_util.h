@@ -1,10 +1,8 @@
 // Test data shared by the text module's tests: a TextGrid in Praat's long format, UTF-16
-// encoding, a one-spot text replacement.
+// encoding.
 #pragma once
 
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace gmg::testing {
 
@@ -75,12 +73,5 @@ inline const char* const kLongTextGrid =
     "            xmin = 2.25 \n"
     "            xmax = 3.5 \n"
     "            text = \"say \"\"hi\"\"\" \n";
-
-inline std::string replace_once(std::string s, const std::string& from, const std::string& to) {
-  std::size_t p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << "test bug: " << from << " not in the text";
-  if (p != std::string::npos) s.replace(p, from.size(), to);
-  return s;
-}
 
 }  // namespace gmg::testing

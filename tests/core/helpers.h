@@ -1,6 +1,8 @@
-// Test helper for error messages: every file error must name the file, so tests look inside the
-// message rather than only at the exception type. (Used by the core, motion, audio and text
-// tests; a candidate for tests/test_support.h.)
+// Test helpers used by the core, motion, audio and text tests (candidates for
+// tests/test_support.h): error messages, one-spot text edits.
+//
+// Every file error must name the file, so tests look inside the message rather than only at the
+// exception type.
 #pragma once
 
 #include <exception>
@@ -26,6 +28,15 @@ std::string error_of(F&& f) {
   }
   ADD_FAILURE() << "expected gmg::Error, nothing was thrown";
   return "";
+}
+
+// s with the first occurrence of `from` replaced by `to`; a test failure when `from` is absent
+// (a bug in the test, not in the code under test).
+inline std::string replace_once(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << "test bug: " << from << " not in the text";
+  if (p != std::string::npos) s.replace(p, from.size(), to);
+  return s;
 }
 
 }  // namespace gmg::testing
