@@ -8,7 +8,9 @@
 #include <cmath>
 #include <string>
 
+#include "audio/resample.h"
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg::audio {
 
@@ -19,7 +21,6 @@ constexpr int kHop = OnsetAnalysis::kHop;
 constexpr int kNfft = OnsetAnalysis::kNfft;
 constexpr int kMels = OnsetAnalysis::kMels;
 constexpr int kBins = kNfft / 2 + 1;
-constexpr double kPi = 3.14159265358979323846;
 
 // librosa's Slaney mel scale (htk=False): linear below 1 kHz, log above.
 constexpr double kFsp = 200.0 / 3.0;
@@ -161,7 +162,8 @@ std::vector<float> onset_strength_envelope(const Audio& audio) {
     for (int i = 0; i < kNfft; ++i) {
       const long long j = start + i;
       fft.in->data[i] = static_cast<smpl_t>(
-          (j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[static_cast<std::size_t>(j)]) : 0.0);
+          (j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[static_cast<std::size_t>(j)])
+                            : 0.0);
     }
     // Power spectrogram |X|^2 from aubio's packed complex spectrum
     // [re 0, re 1 .. re N/2, im N/2-1 .. im 1] (aubio_fft_do would also
@@ -170,14 +172,16 @@ std::vector<float> onset_strength_envelope(const Audio& audio) {
     const smpl_t* c = fft.out->data;
     power[0] = static_cast<double>(c[0]) * c[0];
     for (int k = 1; k < kNfft / 2; ++k) {
-      power[static_cast<std::size_t>(k)] = static_cast<double>(c[k]) * c[k] + static_cast<double>(c[kNfft - k]) * c[kNfft - k];
+      power[static_cast<std::size_t>(k)] =
+          static_cast<double>(c[k]) * c[k] + static_cast<double>(c[kNfft - k]) * c[kNfft - k];
     }
     power[kNfft / 2] = static_cast<double>(c[kNfft / 2]) * c[kNfft / 2];
     double* row = &S[static_cast<std::size_t>(t * kMels)];
     for (int m = 0; m < kMels; ++m) {
       const MelBand& band = bank[static_cast<std::size_t>(m)];
       double acc = 0.0;
-      for (std::size_t k = 0; k < band.w.size(); ++k) acc += band.w[k] * power[static_cast<std::size_t>(band.first) + k];
+      for (std::size_t k = 0; k < band.w.size(); ++k)
+        acc += band.w[k] * power[static_cast<std::size_t>(band.first) + k];
       // power_to_db with ref 1, amin 1e-10.
       row[m] = 10.0 * std::log10(std::max(1e-10, acc));
     }
@@ -207,7 +211,8 @@ std::vector<float> onset_strength_envelope(const Audio& audio) {
 
 OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, const OnsetParams& params) {
   if (params.pre_max < 0 || params.post_max < 1 || params.pre_avg < 0 || params.post_avg < 1 || params.wait < 0) {
-    throw Error("onset detection: invalid peak-picking parameters (pre_max, pre_avg, wait >= 0; post_max, post_avg >= 1)");
+    throw Error(
+        "onset detection: invalid peak-picking parameters (pre_max, pre_avg, wait >= 0; post_max, post_avg >= 1)");
   }
   OnsetAnalysis a;
   a.envelope = envelope;

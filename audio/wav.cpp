@@ -1,4 +1,4 @@
-// WAV reading/writing and scipy-compatible polyphase resampling.
+// WAV reading and writing.
 //
 // Why an own RIFF/WAVE parser rather than aubio's source (aubio_source_*):
 // aubio only reports "failed opening" (no byte offset, no reason, so a lying
@@ -10,17 +10,15 @@
 #include "audio/wav.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
-#include <numeric>
 #include <sstream>
 
+#include "audio/resample.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace gmg::audio {
 
@@ -31,22 +29,35 @@ double Audio::duration() const {
 
 namespace {
 
-std::uint16_t u16_at(const std::vector<unsigned char>& b, std::size_t p) {
+// The file's bytes as unsigned values (read_file_bytes returns chars, which are signed here).
+class Bytes {
+ public:
+  explicit Bytes(const std::string& s) : data_(reinterpret_cast<const unsigned char*>(s.data())), size_(s.size()) {}
+  unsigned char operator[](std::size_t i) const { return data_[i]; }
+  const unsigned char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  const unsigned char* data_;
+  std::size_t size_;
+};
+
+std::uint16_t u16_at(const Bytes& b, std::size_t p) {
   return static_cast<std::uint16_t>(b[p] | (b[p + 1] << 8));
 }
 
-std::uint32_t u32_at(const std::vector<unsigned char>& b, std::size_t p) {
+std::uint32_t u32_at(const Bytes& b, std::size_t p) {
   return static_cast<std::uint32_t>(b[p]) | (static_cast<std::uint32_t>(b[p + 1]) << 8) |
          (static_cast<std::uint32_t>(b[p + 2]) << 16) | (static_cast<std::uint32_t>(b[p + 3]) << 24);
 }
 
-std::uint64_t u64_at(const std::vector<unsigned char>& b, std::size_t p) {
+std::uint64_t u64_at(const Bytes& b, std::size_t p) {
   return static_cast<std::uint64_t>(u32_at(b, p)) | (static_cast<std::uint64_t>(u32_at(b, p + 4)) << 32);
 }
 
 // A four-character code for messages: printable characters as they are,
 // others as \xNN, in quotes.
-std::string fourcc(const std::vector<unsigned char>& b, std::size_t p) {
+std::string fourcc(const Bytes& b, std::size_t p) {
   std::ostringstream os;
   os << '\'';
   for (std::size_t i = p; i < p + 4 && i < b.size(); ++i) {
@@ -61,25 +72,8 @@ std::string fourcc(const std::vector<unsigned char>& b, std::size_t p) {
   return os.str();
 }
 
-bool id_is(const std::vector<unsigned char>& b, std::size_t p, const char* id) {
+bool id_is(const Bytes& b, std::size_t p, const char* id) {
   return std::memcmp(b.data() + p, id, 4) == 0;
-}
-
-std::vector<unsigned char> read_all(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(error_at_line(path, 0, "cannot read: is a directory"));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(error_at_line(path, 0, std::string("cannot open: ") + std::strerror(errno)));
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  if (size < 0 || !in) throw Error(error_at_line(path, 0, "cannot read (not a regular file?)"));
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), size);
-  if (in.gcount() != size) {
-    throw Error(error_at_byte(path, static_cast<long long>(in.gcount()), "read error"));
-  }
-  return bytes;
 }
 
 // What the fmt chunk says, reduced to what decoding needs.
@@ -95,7 +89,7 @@ constexpr std::uint16_t kTagPcm = 1, kTagFloat = 3, kTagExtensible = 0xFFFE;
 
 // Parses the fmt chunk whose header starts at byte `pos` (body at pos + 8,
 // `size` bytes, already known to be inside the file).
-Format parse_fmt(const std::string& path, const std::vector<unsigned char>& b, std::size_t pos, std::uint64_t size) {
+Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::uint64_t size) {
   const std::size_t body = pos + 8;
   if (size < 16) {
     throw Error(error_at_byte(path, static_cast<long long>(pos),
@@ -148,51 +142,18 @@ Format parse_fmt(const std::string& path, const std::vector<unsigned char>& b, s
   if (f.channels == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 2), "zero channels"));
   if (rate == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 4), "zero sample rate"));
   if (rate > 0x7FFFFFFFu) {
-    throw Error(error_at_byte(path, static_cast<long long>(body + 4), "sample rate " + std::to_string(rate) + " is out of range"));
+    throw Error(error_at_byte(path, static_cast<long long>(body + 4),
+                              "sample rate " + std::to_string(rate) + " is out of range"));
   }
   f.sample_rate = static_cast<int>(rate);
   return f;
 }
 
-// Zeroth-order modified Bessel function of the first kind (power series; the
-// arguments here are at most the Kaiser beta, 5, where it converges in ~20 terms).
-double bessel_i0(double x) {
-  double sum = 1.0, term = 1.0;
-  const double q = 0.25 * x * x;
-  for (int k = 1; k < 500; ++k) {
-    term *= q / (static_cast<double>(k) * k);
-    sum += term;
-    if (term < sum * 1e-17) break;
-  }
-  return sum;
-}
-
-// scipy.signal.firwin(numtaps, cutoff, window=('kaiser', beta)) for a
-// low-pass with cutoff relative to Nyquist, scaled to unit gain at DC.
-std::vector<double> firwin_kaiser(int numtaps, double cutoff, double beta) {
-  const double kPi = 3.14159265358979323846;
-  std::vector<double> h(static_cast<std::size_t>(numtaps));
-  const double alpha = 0.5 * (numtaps - 1);
-  const double i0_beta = bessel_i0(beta);
-  double sum = 0.0;
-  for (int i = 0; i < numtaps; ++i) {
-    double m = i - alpha;
-    double xm = cutoff * m;
-    double sinc = (xm == 0.0) ? 1.0 : std::sin(kPi * xm) / (kPi * xm);
-    // Symmetric Kaiser window (scipy.signal.windows.kaiser, sym=True).
-    double r = (numtaps > 1) ? (i - alpha) / alpha : 0.0;
-    double w = bessel_i0(beta * std::sqrt(std::max(0.0, 1.0 - r * r))) / i0_beta;
-    h[static_cast<std::size_t>(i)] = cutoff * sinc * w;
-    sum += h[static_cast<std::size_t>(i)];
-  }
-  for (double& v : h) v /= sum;
-  return h;
-}
-
 }  // namespace
 
 Audio read_wav(const std::string& path) {
-  const std::vector<unsigned char> b = read_all(path);
+  const std::string file = read_file_bytes(path);
+  const Bytes b(file);
   const std::uint64_t file_size = b.size();
   if (file_size == 0) throw Error(error_at_byte(path, 0, "empty file"));
   if (file_size < 12) {
@@ -248,8 +209,9 @@ Audio read_wav(const std::string& path) {
     // Chunks are word aligned: an odd-sized chunk is followed by a pad byte.
     pos = body + size + (size & 1u);
   }
-  if (!have_fmt) throw Error(error_at_byte(path, static_cast<long long>(std::min(pos, file_size)), "no 'fmt ' chunk in the file"));
-  if (!have_data) throw Error(error_at_byte(path, static_cast<long long>(std::min(pos, file_size)), "no 'data' chunk in the file"));
+  const long long end = static_cast<long long>(std::min(pos, file_size));
+  if (!have_fmt) throw Error(error_at_byte(path, end, "no 'fmt ' chunk in the file"));
+  if (!have_data) throw Error(error_at_byte(path, end, "no 'data' chunk in the file"));
 
   const std::uint64_t bytes_per_sample = static_cast<std::uint64_t>(fmt.bits / 8);
   const std::uint64_t frame_bytes = bytes_per_sample * static_cast<std::uint64_t>(fmt.channels);
@@ -315,60 +277,14 @@ Audio read_wav(const std::string& path, int target_rate) {
   return a;
 }
 
-std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate) {
-  if (from_rate <= 0 || to_rate <= 0) {
-    throw Error("resample_poly: sample rates must be positive (from " + std::to_string(from_rate) + " to " +
-                std::to_string(to_rate) + ")");
-  }
-  const long long g = std::gcd(from_rate, to_rate);
-  const long long up = to_rate / g, down = from_rate / g;
-  if (up == 1 && down == 1) return x;
-  const long long n_in = static_cast<long long>(x.size());
-  const long long n_out = (n_in * up + down - 1) / down;  // ceil(n_in * up / down)
-
-  // The filter scipy designs: firwin(2 * half_len + 1, 1 / max_rate,
-  // ('kaiser', 5.0)) times up.
-  const long long max_rate = std::max(up, down);
-  const long long half_len = 10 * max_rate;
-  const long long taps = 2 * half_len + 1;
-  std::vector<double> h = firwin_kaiser(static_cast<int>(taps), 1.0 / static_cast<double>(max_rate), 5.0);
-  for (double& v : h) v *= static_cast<double>(up);
-
-  // scipy's alignment: it pre-pads h with n_pre_pad = down - half_len % down
-  // zeros and drops n_pre_remove = (half_len + n_pre_pad) / down outputs of
-  // upfirdn; since half_len + n_pre_pad is a multiple of down, that works
-  // out to exactly
-  //   y[n] = sum_k h[k] * xu[n * down + half_len - k]
-  //        = sum_k h[k] * xu[n * down + k - half_len]      (h symmetric)
-  // where xu is x with up - 1 zeros after every sample (zero outside x):
-  // output sample n sits at time n / to_rate, the filter centred on it.
-  // Only every up-th tap meets a nonzero xu, so each output costs
-  // taps / up multiplications (the polyphase form).
-  std::vector<float> y(static_cast<std::size_t>(n_out));
-  for (long long n = 0; n < n_out; ++n) {
-    const long long base = n * down - half_len;  // xu index of tap k = 0
-    // First tap k with (base + k) divisible by up and base + k >= 0.
-    long long k0 = ((-base) % up + up) % up;
-    long long i0 = (base + k0) / up;  // x index of tap k0 (may be negative)
-    if (i0 < 0) {
-      k0 += (-i0) * up;
-      i0 = 0;
-    }
-    double acc = 0.0;
-    for (long long k = k0, i = i0; k < taps && i < n_in; k += up, ++i) {
-      acc += h[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(i)];
-    }
-    y[static_cast<std::size_t>(n)] = static_cast<float>(acc);
-  }
-  return y;
-}
-
 void write_wav_pcm16(const std::string& path, const Audio& a) {
   if (a.sample_rate <= 0) {
-    throw Error(error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) + " is not positive"));
+    throw Error(error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) +
+                                           " is not positive"));
   }
   const std::uint64_t data_bytes = 2ull * a.samples.size();
-  if (data_bytes + 36 > 0xFFFFFFFFull) throw Error(error_at_line(path, 0, "cannot write WAV: too many samples for RIFF"));
+  if (data_bytes + 36 > 0xFFFFFFFFull)
+    throw Error(error_at_line(path, 0, "cannot write WAV: too many samples for RIFF"));
   std::vector<unsigned char> out;
   out.reserve(static_cast<std::size_t>(44 + data_bytes));
   auto put = [&out](const char* s) { out.insert(out.end(), s, s + 4); };
@@ -400,25 +316,10 @@ void write_wav_pcm16(const std::string& path, const Audio& a) {
     put16(static_cast<std::uint16_t>(static_cast<std::int16_t>(v)));
   }
 
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error(error_at_line(tmp, 0, std::string("cannot open for writing: ") + std::strerror(errno)));
-    f.write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw Error(error_at_line(tmp, 0, "write failed"));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ec2;
-    std::filesystem::remove(tmp, ec2);
-    throw Error(error_at_line(path, 0, "cannot rename " + tmp + ": " + ec.message()));
-  }
+  auto write = [&out](std::ostream& os) {
+    os.write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
+  };
+  write_file_atomically(path, write, true);
 }
 
 }  // namespace gmg::audio

@@ -1,12 +1,10 @@
-// WAV reading and writing, and polyphase resampling.
+// WAV reading and writing (resampling: audio/resample.h).
 //
 // The engine reads speech as mono float samples. read_wav accepts the WAV
 // variants found in the field (PCM 8/16/24/32-bit, IEEE float 32/64,
 // WAVE_FORMAT_EXTENSIBLE, any channel count and sample rate) and rejects
 // everything else with a gmg::Error naming the file, the byte offset and the
-// problem. resample_poly reproduces scipy.signal.resample_poly, which is what
-// librosa.load(sr=22050, res_type="polyphase") uses, so the onset detector
-// sees the same samples as the librosa reference.
+// problem.
 #pragma once
 
 #include <string>
@@ -29,24 +27,21 @@ struct Audio {
 
 // Reads a RIFF/WAVE file and mixes its channels down to mono (mean of the
 // channels). Throws gmg::Error "path: byte N: problem" on anything it cannot
-// read faithfully (see wav.cpp for the list).
+// read faithfully (see wav.cpp for the list), and the reader's "path: cannot
+// open (reason)" (engine/core/files.h) when the file cannot be read at all.
 Audio read_wav(const std::string& path);
 
-// As above, then resamples to target_rate with resample_poly when the file's
-// rate differs. target_rate must be > 0.
+// As above, then resamples to target_rate with resample_poly (audio/resample.h)
+// when the file's rate differs. target_rate must be > 0 (else gmg::Error naming
+// the file).
 Audio read_wav(const std::string& path, int target_rate);
-
-// scipy.signal.resample_poly(x, up, down) with up/down = to_rate/from_rate in
-// lowest terms, window ('kaiser', 5.0), zero padding. Output sample n lies at
-// time n / to_rate (zero phase); the output has ceil(len(x) * up / down)
-// samples. Returns a copy when the rates are equal. Throws gmg::Error when a
-// rate is not positive.
-std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate);
 
 // Writes mono 16-bit PCM (samples clipped to [-1, 1], scaled by 32768 and
 // rounded, so anything read from a PCM16 file writes back bit-identical).
-// Writes path + ".tmp" first and renames it, so a reader never sees half a
-// file. Throws gmg::Error when the file cannot be written or a has no rate.
+// Writes atomically (write_file_atomically: a temporary file beside `path`,
+// then a rename), so a reader never sees half a file and a failure leaves
+// none. Throws gmg::Error naming `path` when the file cannot be written or
+// `a` has no rate.
 void write_wav_pcm16(const std::string& path, const Audio& a);
 
 }  // namespace gmg::audio

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 #include "text/default_lexicon.h"
 #include "text/text_file.h"
 
@@ -21,10 +22,6 @@ struct Unit {
   std::string bytes;  // what to output for WordChar / Joiner
 };
 
-bool is_ascii_space(unsigned char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-}
-
 // Splits UTF-8 text into classified characters.
 std::vector<Unit> classify(const std::string& w) {
   std::vector<Unit> units;
@@ -37,7 +34,7 @@ std::vector<Unit> classify(const std::string& w) {
         units.push_back({Kind::WordChar, std::string(1, lower)});
       } else if (c == '\'' || c == '-') {
         units.push_back({Kind::Joiner, std::string(1, static_cast<char>(c))});
-      } else if (is_ascii_space(c)) {
+      } else if (is_ascii_space(static_cast<char>(c))) {
         units.push_back({Kind::Space, ""});
       } else {
         units.push_back({Kind::Punct, ""});
@@ -137,9 +134,9 @@ std::vector<std::string> normalize_tokens(const std::string& text) {
   std::vector<std::string> tokens;
   std::size_t i = 0;
   while (i < text.size()) {
-    while (i < text.size() && is_ascii_space(static_cast<unsigned char>(text[i]))) ++i;
+    while (i < text.size() && is_ascii_space(text[i])) ++i;
     std::size_t start = i;
-    while (i < text.size() && !is_ascii_space(static_cast<unsigned char>(text[i]))) ++i;
+    while (i < text.size() && !is_ascii_space(text[i])) ++i;
     if (i == start) break;
     // normalize_word may still split on non-ASCII spaces: keep each piece.
     std::string n = normalize_word(text.substr(start, i - start));
@@ -169,21 +166,21 @@ bool Lexicon::contains(const std::string& phrase) const {
 }
 
 Lexicon load_lexicon(const std::string& path) {
-  return parse_lexicon(detail::read_text_file(path, "keyword lexicon"), path);
+  return parse_lexicon(detail::read_text_file(path), path);
 }
 
 Lexicon parse_lexicon(const std::string& text, const std::string& path) {
-  const std::vector<std::string> lines = detail::split_lines(text);
+  const std::vector<std::string> lines = split_lines(text);
   Lexicon lex;
   std::set<std::vector<std::string>> seen;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     std::string line = lines[i];
     if (std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    if (detail::trim(line).empty()) continue;
+    if (trim(line).empty()) continue;
     std::vector<std::string> tokens = normalize_tokens(line);
     if (tokens.empty())
       throw Error(error_at_line(path, static_cast<long>(i + 1),
-                                "keyword \"" + std::string(detail::trim(line)) +
+                                "keyword \"" + std::string(trim(line)) +
                                     "\" has no letters or digits"));
     if (seen.insert(tokens).second) lex.phrases.push_back(std::move(tokens));
   }

@@ -1,13 +1,10 @@
 #include "text/text_file.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/strings.h"
 
 namespace gmg::text::detail {
 
@@ -67,8 +64,7 @@ std::string decode_utf16(const std::string& bytes, std::size_t begin, bool littl
 
 std::string decode_to_utf8(const std::string& bytes, const std::string& path) {
   auto byte = [&](std::size_t i) { return static_cast<unsigned char>(bytes[i]); };
-  if (bytes.size() >= 3 && byte(0) == 0xEF && byte(1) == 0xBB && byte(2) == 0xBF)
-    return bytes.substr(3);
+  if (has_utf8_bom(bytes)) return std::string(strip_utf8_bom(bytes));
   if (bytes.size() >= 2 && byte(0) == 0xFF && byte(1) == 0xFE)
     return decode_utf16(bytes, 2, true, path);
   if (bytes.size() >= 2 && byte(0) == 0xFE && byte(1) == 0xFF)
@@ -81,58 +77,6 @@ std::string decode_to_utf8(const std::string& bytes, const std::string& path) {
   return bytes;
 }
 
-std::string read_text_file(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the " + what + " file (missing or unreadable)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read the " + what + " file");
-  return decode_to_utf8(buffer.str(), path);
-}
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t nl = text.find('\n', pos);
-    std::size_t end = nl == std::string::npos ? text.size() : nl;
-    std::size_t len = end - pos;
-    if (len > 0 && text[pos + len - 1] == '\r') --len;
-    lines.emplace_back(text, pos, len);
-    if (nl == std::string::npos) break;
-    pos = nl + 1;
-  }
-  return lines;
-}
-
-std::string_view trim(std::string_view s) {
-  auto ws = [](char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-  };
-  while (!s.empty() && ws(s.front())) s.remove_prefix(1);
-  while (!s.empty() && ws(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::optional<double> parse_number(std::string_view field) {
-  field = trim(field);
-  if (!field.empty() && field.front() == '+') {
-    field.remove_prefix(1);
-    if (!field.empty() && (field.front() == '-' || field.front() == '+')) return std::nullopt;
-  }
-  if (field.empty()) return std::nullopt;
-  double value = 0;
-  auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
-  if (ec != std::errc() || ptr != field.data() + field.size()) return std::nullopt;
-  if (!std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-std::string ascii_lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return out;
-}
+std::string read_text_file(const std::string& path) { return decode_to_utf8(read_file_bytes(path), path); }
 
 }  // namespace gmg::text::detail

@@ -66,8 +66,9 @@ std::vector<Word> read_textgrid(const std::string& path);
 // suffix, a number of seconds, or an object {"seconds": "1", "nanos": 500000000} (each member
 // a string or number, a missing member is 0). A result without alternatives or without words
 // contributes no words.
-// Errors: invalid JSON ("file: byte N: invalid JSON: ..."), wrong structure or a missing field
-// (the message gives the JSON location, e.g. "[2].alternatives[0].words[5]"), a bad time.
+// Errors: invalid JSON, including a number beyond double range such as 1e309 ("file: byte N:
+// invalid JSON (...)", engine/core/json.h), wrong structure or a missing field (the message gives
+// the JSON location, e.g. "[2].alternatives[0].words[5]"), a bad time.
 std::vector<Word> read_google_json(const std::string& path);
 
 // Throws gmg::Error naming `path` when some word ends after duration_s + tolerance_s, i.e. the

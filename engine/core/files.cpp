@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <unistd.h>
 
@@ -50,11 +49,16 @@ std::string read_file_bytes(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file (" + std::strerror(errno) + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read error");
-  return ss.str();
+  if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  // istream::read, not `out << in.rdbuf()`: the latter reports a failing read(2) on the output
+  // stream and leaves `in` good, so a read error would pass as a short file.
+  std::string bytes;
+  if (const auto size = std::filesystem::file_size(path, ec); !ec) bytes.reserve(static_cast<std::size_t>(size));
+  char buffer[1 << 16];
+  errno = 0;
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) throw Error(path + ": read error (" + std::strerror(errno) + ")");
+  return bytes;
 }
 
 }  // namespace gmg

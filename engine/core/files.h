@@ -13,7 +13,11 @@ namespace gmg {
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                            bool binary = false);
 
-// Whole file as bytes. Throws gmg::Error "path: cannot open file (reason)" when unreadable.
+// Whole file as bytes: the one file reader of the engine (WAV, BVH, transcripts, lexicons, JSON
+// all come through it), so every "cannot read" error has one wording, "path: what":
+//   "x.wav: cannot open (No such file or directory)"
+//   "x: is a folder, not a file"
+//   "x: read error (Input/output error)"
 std::string read_file_bytes(const std::string& path);
 
 }  // namespace gmg

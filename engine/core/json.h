@@ -7,9 +7,12 @@
 
 namespace gmg {
 
-// Parses the whole file as JSON. Throws gmg::Error naming the file: "path: byte N: invalid JSON
-// (...)", or "path: byte N: number out of range" for literals such as 1e309 (nlohmann would
-// otherwise throw its own out_of_range exception with no file in it).
+// Parses the whole file as JSON. Throws gmg::Error naming the file: the reader's errors
+// (engine/core/files.h), "path: byte N: invalid JSON (reason)" for a syntax error, and
+// "path: byte N: invalid JSON (the number 1e309 is out of range for a double)" for a literal
+// beyond double range (nlohmann would otherwise throw its own out_of_range exception with no
+// file in it). N counts the bytes read up to and including the offending one (nlohmann's
+// convention: the 1-based position of the token's last byte).
 nlohmann::json read_json_file(const std::string& path);
 nlohmann::ordered_json read_ordered_json_file(const std::string& path);
 

@@ -7,9 +7,8 @@
 namespace gmg {
 
 std::string_view trim(std::string_view s) {
-  auto ws = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; };
-  while (!s.empty() && ws(s.front())) s.remove_prefix(1);
-  while (!s.empty() && ws(s.back())) s.remove_suffix(1);
+  while (!s.empty() && is_ascii_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_ascii_space(s.back())) s.remove_suffix(1);
   return s;
 }
 
@@ -84,7 +83,13 @@ std::string format_number(double v) {
     const auto r = std::from_chars(buf, buf + std::char_traits<char>::length(buf), back);
     if (r.ec == std::errc() && back == v) break;
   }
-  return buf;
+  // %g writes 100 as "1e+02" (it reads back); a whole number's own digits win when not longer.
+  std::string out = buf;
+  if (v == std::floor(v) && std::abs(v) < 1e16) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    if (std::char_traits<char>::length(buf) <= out.size()) out = buf;
+  }
+  return out;
 }
 
 std::string to_valid_utf8(std::string_view s) {

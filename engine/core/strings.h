@@ -11,7 +11,13 @@
 
 namespace gmg {
 
-// Removes leading and trailing ASCII white space (space, tab, CR, LF, FF, VT).
+// True for ASCII white space: space, tab, CR, LF, FF, VT (what trim removes and the tokenizers
+// of the readers split on).
+inline bool is_ascii_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
+
+// Removes leading and trailing ASCII white space (is_ascii_space).
 std::string_view trim(std::string_view s);
 
 // ASCII lower case of s (other bytes unchanged).
@@ -37,8 +43,9 @@ std::string_view strip_utf8_bom(std::string_view s);
 // locale-independently. nullopt for an empty field, trailing garbage, NaN or infinity.
 std::optional<double> parse_number(std::string_view field);
 
-// The shortest text that reads back as exactly v ("0.2", "1e-05", "20231009"); "nan"/"inf" as
-// such. Used wherever a number is printed for a human or a config file.
+// The shortest text that reads back as exactly v ("0.2", "1e-05", "20231009", "100" rather than
+// "1e+02"; plain digits win ties); "nan"/"inf" as such. Used wherever a number is printed for a
+// human or a config file.
 std::string format_number(double v);
 
 // Valid UTF-8 copy of s: every byte that does not start a well-formed UTF-8 sequence (including

@@ -1,10 +1,12 @@
 // BVH reading and writing for any skeleton.
 //
-// Reads: any joint names and hierarchy, End Sites, 0-6 channels per joint in any order
-// (position channels on any joint), CRLF or LF, tabs or spaces. Rejects malformed files with a
-// gmg::Error "path: line N: problem" and never returns a partial motion.
+// Reads (bvh_read.cpp): any joint names and hierarchy, End Sites, 0-6 channels per joint in any
+// order (channel names ASCII case-insensitive, position channels on any joint), CRLF or LF, tabs or
+// spaces, a UTF-8 byte-order mark. Rejects malformed files with a gmg::Error "path: line N:
+// problem" (an unreadable file: the reader's "path: cannot open (reason)", engine/core/files.h)
+// and never returns a partial motion. Writes: bvh_write.cpp.
 //
-// Semantics: rotation channels compose intrinsically in listed order (see engine/rotation.h);
+// Semantics: rotation channels compose intrinsically in listed order (see engine/motion/rotation.h);
 // a joint's position channels replace its OFFSET as its local translation (the convention of
 // MotionBuilder and the GENEA data, whose per-joint position channels repeat the offsets).
 // fps = 1 / Frame Time, snapped to the nearest integer when within 0.1% of it, because files

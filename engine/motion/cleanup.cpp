@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg {
 namespace {
@@ -29,7 +30,8 @@ Eigen::VectorXd fit_and_evaluate(const Eigen::VectorXd& y, int order, const Eige
 }  // namespace
 
 std::vector<double> savgol_filter(const std::vector<double>& x, int window, int order) {
-  if (window % 2 == 0 || window <= order) throw Error("Savitzky-Golay: the window must be odd and larger than the order");
+  if (window % 2 == 0 || window <= order)
+    throw Error("Savitzky-Golay: the window must be odd and larger than the order");
   const int n = static_cast<int>(x.size());
   if (n < window) window = n % 2 == 1 ? n : n - 1;
   if (window <= order) return x;
@@ -92,14 +94,12 @@ void motion_lock_and_smooth(Motion& m, const std::vector<std::string>& joints, i
       const glm::dquat& q = m.rotation(f, j);
       // Twist part of q about the axis: its vector part projected on the axis, with w.
       double angle = 2.0 * std::atan2(glm::dot(glm::dvec3(q.x, q.y, q.z), axis), q.w);
-      if (f > 0) {  // unwrap so the filter sees a continuous angle
-        const double two_pi = 2.0 * 3.14159265358979323846;
-        angle += two_pi * std::round((twist[static_cast<std::size_t>(f - 1)] - angle) / two_pi);
-      }
+      if (f > 0) angle = wrap_near(angle, twist[static_cast<std::size_t>(f - 1)]);  // the filter needs it continuous
       twist[static_cast<std::size_t>(f)] = angle;
     }
     const std::vector<double> smooth = savgol_filter(twist, window, order);
-    for (int f = 0; f < m.frame_count; ++f) m.rotations[m.index(f, j)] = glm::angleAxis(smooth[static_cast<std::size_t>(f)], axis);
+    for (int f = 0; f < m.frame_count; ++f)
+      m.rotations[m.index(f, j)] = glm::angleAxis(smooth[static_cast<std::size_t>(f)], axis);
   }
   if (!joints.empty()) m.euler_hints.clear();  // the rotations no longer match the file's angles
 }

@@ -1,13 +1,13 @@
 #include "engine/motion/rotation.h"
 
+#include <cctype>
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 glm::dvec3 unit_axis(int axis) {
   glm::dvec3 a(0.0);
@@ -20,11 +20,6 @@ double matrix_element(const glm::dmat3& m, int row, int col) { return m[col][row
 
 // True for the cyclic orders XYZ, YZX, ZXY.
 bool is_cyclic(const EulerOrder& o) { return (o[0] + 1) % 3 == o[1] && (o[1] + 1) % 3 == o[2]; }
-
-double wrap_near(double angle, double reference) {
-  const double two_pi = 2.0 * kPi;
-  return angle + two_pi * std::round((reference - angle) / two_pi);
-}
 
 }  // namespace
 

@@ -1,17 +1,16 @@
+// BVH reading: a tokenizer over the hierarchy, then one pass over the frame lines.
 #include "engine/motion/bvh.h"
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/math.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace {
-
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 // A cursor over the hierarchy part: whitespace-separated tokens with line numbers.
 class Tokenizer {
@@ -23,7 +22,7 @@ class Tokenizer {
     skip_space();
     token_line_ = line_;
     const std::size_t start = pos_;
-    while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
+    while (pos_ < text_.size() && !is_ascii_space(text_[pos_])) ++pos_;
     return text_.substr(start, pos_ - start);
   }
 
@@ -52,11 +51,7 @@ class Tokenizer {
   std::string rest_of_line() {
     const std::size_t start = pos_;
     while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-    std::string s = text_.substr(start, pos_ - start);
-    while (!s.empty() && is_space(s.back())) s.pop_back();
-    std::size_t b = 0;
-    while (b < s.size() && is_space(s[b])) ++b;
-    return s.substr(b);
+    return std::string(trim(std::string_view(text_).substr(start, pos_ - start)));
   }
 
   [[noreturn]] void fail(const std::string& what) const { throw Error(error_at_line(name_, token_line_, what)); }
@@ -65,9 +60,8 @@ class Tokenizer {
   long line() const { return line_; }
 
  private:
-  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
   void skip_space() {
-    while (pos_ < text_.size() && is_space(text_[pos_])) {
+    while (pos_ < text_.size() && is_ascii_space(text_[pos_])) {
       if (text_[pos_] == '\n') ++line_;
       ++pos_;
     }
@@ -82,8 +76,9 @@ class Tokenizer {
 
 bool parse_channel(const std::string& t, Channel* out) {
   static const char* names[] = {"Xposition", "Yposition", "Zposition", "Xrotation", "Yrotation", "Zrotation"};
+  const std::string lower = ascii_lower(t);
   for (int i = 0; i < 6; ++i) {
-    if (strcasecmp(t.c_str(), names[i]) == 0) {
+    if (lower == ascii_lower(names[i])) {
       *out = static_cast<Channel>(i);
       return true;
     }
@@ -167,7 +162,8 @@ bool parse_frame_line(const char* begin, const char* end, std::vector<double>& v
   }
   if (values.empty()) return false;
   if (static_cast<int>(values.size()) != expected)
-    throw Error(error_at_line(name, line, "frame has " + std::to_string(values.size()) + " values but the hierarchy declares " +
+    throw Error(error_at_line(name, line, "frame has " + std::to_string(values.size()) +
+                                              " values but the hierarchy declares " +
                                               std::to_string(expected) + " channels"));
   return true;
 }
@@ -177,8 +173,10 @@ bool parse_frame_line(const char* begin, const char* end, std::vector<double>& v
 Motion bvh_parse(const std::string& text, const std::string& name) {
   Tokenizer tok(text, name);
   std::string t = tok.next();
-  if (t.size() >= 3 && static_cast<unsigned char>(t[0]) == 0xEF) t = t.substr(3);  // UTF-8 BOM
-  if (t != "HIERARCHY") tok.fail(t.empty() ? "empty file, expected HIERARCHY" : "not a BVH file: expected HIERARCHY, found '" + t.substr(0, 40) + "'");
+  t = std::string(strip_utf8_bom(t));
+  if (t != "HIERARCHY")
+    tok.fail(t.empty() ? "empty file, expected HIERARCHY"
+                       : "not a BVH file: expected HIERARCHY, found '" + t.substr(0, 40) + "'");
   tok.expect("ROOT");
   Motion m;
   parse_joint(tok, m.skeleton, -1);
@@ -187,7 +185,8 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
   if (t != "MOTION") tok.fail("expected MOTION, found '" + t + "'");
   tok.expect("Frames:");
   const double frames = tok.number("Frames");
-  if (frames < 0 || frames != std::floor(frames) || frames > 1e8) tok.fail("invalid frame count " + std::to_string(frames));
+  if (frames < 0 || frames != std::floor(frames) || frames > 1e8)
+    tok.fail("invalid frame count " + std::to_string(frames));
   m.frame_count = static_cast<int>(frames);
   if (m.frame_count == 0) tok.fail("the file has zero frames");
   tok.expect("Frame");
@@ -249,74 +248,5 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
 }
 
 Motion bvh_read(const std::string& path) { return bvh_parse(read_file_bytes(path), path); }
-
-namespace {
-
-void format_joint(const Skeleton& sk, int j, int depth, std::string& out) {
-  const Joint& joint = sk.joints[j];
-  const std::string indent(static_cast<std::size_t>(depth), '\t');
-  char buf[256];
-  out += indent + (joint.parent < 0 ? "ROOT " : "JOINT ") + joint.name + "\n";
-  out += indent + "{\n";
-  std::snprintf(buf, sizeof buf, "%s\tOFFSET %.6f %.6f %.6f\n", indent.c_str(), joint.offset.x, joint.offset.y,
-                joint.offset.z);
-  out += buf;
-  if (!joint.channels.empty()) {
-    out += indent + "\tCHANNELS " + std::to_string(joint.channels.size());
-    for (Channel c : joint.channels) out += std::string(" ") + channel_name(c);
-    out += "\n";
-  }
-  for (int child = j + 1; child < sk.joint_count(); ++child)
-    if (sk.joints[child].parent == j) format_joint(sk, child, depth + 1, out);
-  if (joint.has_end_site) {
-    out += indent + "\tEnd Site\n" + indent + "\t{\n";
-    std::snprintf(buf, sizeof buf, "%s\t\tOFFSET %.6f %.6f %.6f\n", indent.c_str(), joint.end_site.x,
-                  joint.end_site.y, joint.end_site.z);
-    out += buf;
-    out += indent + "\t}\n";
-  }
-  out += indent + "}\n";
-}
-
-}  // namespace
-
-std::string bvh_format(const Motion& m) {
-  const Skeleton& sk = m.skeleton;
-  std::string out = "HIERARCHY\n";
-  format_joint(sk, 0, 0, out);
-  char buf[64];
-  out += "MOTION\nFrames: " + std::to_string(m.frame_count) + "\n";
-  std::snprintf(buf, sizeof buf, "Frame Time: %.8f\n", 1.0 / m.fps);
-  out += buf;
-  const int joints = sk.joint_count();
-  std::vector<glm::dvec3> previous(static_cast<std::size_t>(joints), glm::dvec3(0.0));
-  for (int f = 0; f < m.frame_count; ++f) {
-    bool first_value = true;
-    for (int j = 0; j < joints; ++j) {
-      const Joint& joint = sk.joints[j];
-      if (joint.channels.empty()) continue;
-      const bool hinted = !m.euler_hints.empty();
-      const glm::dvec3 angles = hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order, m.euler_hints[m.index(f, j)])
-                                       : quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
-      previous[j] = angles;
-      const glm::dvec3& t = m.translation(f, j);
-      int rot_index = 0;
-      for (Channel c : joint.channels) {
-        const double v = is_position_channel(c) ? t[channel_axis(c)] : angles[rot_index++] / kDegToRad;
-        std::snprintf(buf, sizeof buf, first_value ? "%.6f" : " %.6f", v == 0.0 ? 0.0 : v);
-        out += buf;
-        first_value = false;
-      }
-    }
-    out += "\n";
-  }
-  return out;
-}
-
-void bvh_write(const std::string& path, const Motion& m) {
-  motion_check_finite(m, path);
-  const std::string text = bvh_format(m);
-  write_file_atomically(path, [&](std::ostream& os) { os << text; });
-}
 
 }  // namespace gmg

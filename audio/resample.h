@@ -1,0 +1,28 @@
+// Polyphase resampling as scipy.signal.resample_poly does it.
+//
+// librosa.load(sr=22050, res_type="polyphase") resamples with scipy.signal.resample_poly, so
+// reproducing it here lets the onset detector see the same samples as the librosa reference.
+#pragma once
+
+#include <vector>
+
+namespace gmg::audio {
+
+// scipy.signal.resample_poly(x, up, down) with up/down = to_rate/from_rate in
+// lowest terms, window ('kaiser', 5.0), zero padding. Output sample n lies at
+// time n / to_rate (zero phase); the output has ceil(len(x) * up / down)
+// samples. Returns a copy when the rates are equal. Throws gmg::Error when a
+// rate is not positive.
+std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate);
+
+// The filter design behind it (exposed for tests).
+
+// Zeroth-order modified Bessel function of the first kind, I0(x), for |x| up to about 10.
+double bessel_i0(double x);
+
+// scipy.signal.firwin(numtaps, cutoff, window=('kaiser', beta)) for a
+// low-pass with cutoff relative to Nyquist, scaled to unit gain at DC.
+// numtaps >= 1; symmetric (linear phase).
+std::vector<double> firwin_kaiser(int numtaps, double cutoff, double beta);
+
+}  // namespace gmg::audio

@@ -1,0 +1,153 @@
+// engine/core/strings: exact values of the shared text utilities.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "engine/core/strings.h"
+
+namespace gmg {
+namespace {
+
+const std::string kReplacement = "\xEF\xBF\xBD";  // U+FFFD in UTF-8
+
+TEST(Strings, TrimRemovesAsciiWhiteSpaceOnly) {
+  EXPECT_EQ(trim("  a b \t\r\n"), "a b");
+  EXPECT_EQ(trim("\f\va\v\f"), "a");
+  EXPECT_EQ(trim(""), "");
+  EXPECT_EQ(trim(" \t\r\n\f\v"), "");
+  EXPECT_EQ(trim("x"), "x");
+  // A no-break space (U+00A0, C2 A0) is not ASCII white space: kept.
+  EXPECT_EQ(trim("\xC2\xA0x "), "\xC2\xA0x");
+}
+
+TEST(Strings, IsAsciiSpace) {
+  for (char c : {' ', '\t', '\r', '\n', '\f', '\v'}) EXPECT_TRUE(is_ascii_space(c)) << static_cast<int>(c);
+  for (char c : {'a', '\0', '_', '\xA0', '\xC2'}) EXPECT_FALSE(is_ascii_space(c)) << static_cast<int>(c);
+}
+
+TEST(Strings, AsciiLowerLeavesOtherBytes) {
+  EXPECT_EQ(ascii_lower("AbC-XyZ 09"), "abc-xyz 09");
+  EXPECT_EQ(ascii_lower("\xC3\x84" "B"), "\xC3\x84" "b");  // U+00C4 stays as it is
+  EXPECT_EQ(ascii_lower(""), "");
+  EXPECT_EQ(ascii_lower("@[`{"), "@[`{");  // the neighbours of A-Z and a-z
+}
+
+TEST(Strings, EndsWithCaseInsensitive) {
+  EXPECT_TRUE(ends_with_ci("take.TextGrid", ".textgrid"));
+  EXPECT_TRUE(ends_with_ci("X.TSV", ".tsv"));
+  EXPECT_TRUE(ends_with_ci("abc", ""));
+  EXPECT_FALSE(ends_with_ci("a", ".tsv"));
+  EXPECT_FALSE(ends_with_ci("take.tsv.bak", ".tsv"));
+}
+
+TEST(Strings, SplitTrimmedDropsEmptyPieces) {
+  EXPECT_EQ(split_trimmed("a, b,,c ", ','), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_EQ(split_trimmed("RightHand", ','), (std::vector<std::string>{"RightHand"}));
+  EXPECT_TRUE(split_trimmed("", ',').empty());
+  EXPECT_TRUE(split_trimmed(" , ,", ',').empty());
+  EXPECT_EQ(split_trimmed("a b;c", ';'), (std::vector<std::string>{"a b", "c"}));
+}
+
+TEST(Strings, SplitLines) {
+  using Lines = std::vector<std::string>;
+  EXPECT_EQ(split_lines("a\r\nb\n\nc"), (Lines{"a", "b", "", "c"}));
+  EXPECT_EQ(split_lines("a\n"), (Lines{"a"}));  // no empty line after the last "\n"
+  EXPECT_EQ(split_lines("a\n\n"), (Lines{"a", ""}));
+  EXPECT_EQ(split_lines("\n"), (Lines{""}));
+  EXPECT_EQ(split_lines(""), Lines{});
+  EXPECT_EQ(split_lines("a\r"), (Lines{"a"}));      // a final CR of a CRLF file cut short
+  EXPECT_EQ(split_lines("a\rb\n"), (Lines{"a\rb"}));  // only a line's last CR goes
+}
+
+TEST(Strings, Utf8BomNeedsAllThreeBytes) {
+  EXPECT_FALSE(has_utf8_bom(""));
+  EXPECT_FALSE(has_utf8_bom("\xEF"));
+  EXPECT_FALSE(has_utf8_bom("\xEF\xBB"));
+  EXPECT_TRUE(has_utf8_bom("\xEF\xBB\xBF"));
+  EXPECT_TRUE(has_utf8_bom("\xEF\xBB\xBFHIERARCHY"));
+  EXPECT_FALSE(has_utf8_bom("\xEF\xBF\xBDHIERARCHY"));  // U+FFFD starts with EF too
+  EXPECT_FALSE(has_utf8_bom("x\xEF\xBB\xBF"));
+
+  EXPECT_EQ(strip_utf8_bom("\xEF\xBB\xBFHIERARCHY"), "HIERARCHY");
+  EXPECT_EQ(strip_utf8_bom("\xEF\xBB\xBF"), "");
+  EXPECT_EQ(strip_utf8_bom("\xEF\xBB" "x"), "\xEF\xBB" "x");
+  EXPECT_EQ(strip_utf8_bom("\xEF\xBF\xBD"), "\xEF\xBF\xBD");
+  EXPECT_EQ(strip_utf8_bom("HIERARCHY"), "HIERARCHY");
+}
+
+TEST(Strings, ParseNumber) {
+  EXPECT_EQ(parse_number("1.5"), 1.5);
+  EXPECT_EQ(parse_number(" -2 "), -2.0);
+  EXPECT_EQ(parse_number("+3e-1"), 0.3);
+  EXPECT_EQ(parse_number(".5"), 0.5);
+  EXPECT_EQ(parse_number("\t0\r\n"), 0.0);
+  for (const char* bad : {"", "  ", "+", "+-1", "++1", "1.5x", "x1", "1 2", "nan", "inf", "-inf", "1e309", "0x10"})
+    EXPECT_FALSE(parse_number(bad).has_value()) << "'" << bad << "'";
+}
+
+TEST(Strings, FormatNumberIsShortest) {
+  EXPECT_EQ(format_number(0.2), "0.2");
+  EXPECT_EQ(format_number(0.1 + 0.2), "0.30000000000000004");  // 0.3 would read back as another double
+  EXPECT_EQ(format_number(1.0 / 3.0), "0.3333333333333333");
+  EXPECT_EQ(format_number(1e-5), "1e-05");
+  EXPECT_EQ(format_number(20231009), "20231009");
+  EXPECT_EQ(format_number(0.0), "0");
+  EXPECT_EQ(format_number(-1.5), "-1.5");
+  // Whole numbers: plain digits when they are no longer than the exponent form ("%.1g" of 100
+  // is "1e+02", which reads back too).
+  EXPECT_EQ(format_number(100), "100");
+  EXPECT_EQ(format_number(1500), "1500");
+  EXPECT_EQ(format_number(-300), "-300");
+  EXPECT_EQ(format_number(1e5), "1e+05");
+  EXPECT_EQ(format_number(1e21), "1e+21");
+  EXPECT_EQ(format_number(0.0001), "0.0001");
+  EXPECT_EQ(format_number(std::nan("")), "nan");
+  EXPECT_EQ(format_number(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(format_number(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+TEST(Strings, FormatNumberRoundTrips) {
+  for (double v : {0.2, 0.1 + 0.2, 1.0 / 3.0, 2.0 / 3.0, 1e-300, 4.9e-324, 1.7976931348623157e308, -123.456,
+                   29.97002997002997, 1.0 / 30.0}) {
+    const std::string text = format_number(v);
+    double back = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), back);
+    EXPECT_TRUE(r.ec == std::errc() && r.ptr == text.data() + text.size()) << text;
+    EXPECT_EQ(back, v) << text;
+    // Shortest: one significant digit fewer no longer reads back.
+    std::size_t digits = 0;  // significant: leading zeros ("0.0333") do not count
+    for (char c : text.substr(0, text.find('e'))) digits += (c >= '1' && c <= '9') || (c == '0' && digits > 0);
+    if (digits > 1 && v != 0) {
+      char shorter[400];
+      std::snprintf(shorter, sizeof shorter, "%.*g", static_cast<int>(digits) - 1, v);
+      EXPECT_NE(std::strtod(shorter, nullptr), v) << text << " vs " << shorter;
+    }
+  }
+}
+
+TEST(Strings, ToValidUtf8) {
+  const std::string r = kReplacement;
+  EXPECT_EQ(to_valid_utf8("plain ascii"), "plain ascii");
+  EXPECT_EQ(to_valid_utf8("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80"), "caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80");
+  EXPECT_EQ(to_valid_utf8("caf\xE9"), "caf" + r);                 // Latin-1 e-acute
+  EXPECT_EQ(to_valid_utf8("\xE9t\xE9"), r + "t" + r);
+  EXPECT_EQ(to_valid_utf8("\xC0\xAF"), r + r);                    // overlong "/"
+  EXPECT_EQ(to_valid_utf8("\xE0\x80\xAF"), r + r + r);            // overlong "/", 3 bytes
+  EXPECT_EQ(to_valid_utf8("\xF0\x80\x80\xAF"), r + r + r + r);    // overlong "/", 4 bytes
+  EXPECT_EQ(to_valid_utf8("\xED\xA0\x80"), r + r + r);            // surrogate U+D800
+  EXPECT_EQ(to_valid_utf8("\xED\x9F\xBF"), "\xED\x9F\xBF");       // U+D7FF, just below
+  EXPECT_EQ(to_valid_utf8("\xF4\x8F\xBF\xBF"), "\xF4\x8F\xBF\xBF");  // U+10FFFF
+  EXPECT_EQ(to_valid_utf8("\xF4\x90\x80\x80"), r + r + r + r);    // beyond U+10FFFF
+  EXPECT_EQ(to_valid_utf8("a\xE2\x82"), "a" + r + r);             // cut short at the end
+  EXPECT_EQ(to_valid_utf8("\x80"), r);                            // lone continuation byte
+  EXPECT_EQ(to_valid_utf8(std::string("a\0b", 3)), std::string("a\0b", 3));
+}
+
+}  // namespace
+}  // namespace gmg
