@@ -1,4 +1,4 @@
-// Tests of engine/synth: the procedural synthetic speaker used by the demo, tests and benchmarks.
+// Tests of engine/app/synth: the procedural synthetic speaker used by the demo, tests and benchmarks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
