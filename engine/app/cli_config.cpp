@@ -17,7 +17,8 @@ struct ConfigArgs {
 void run_config(const ConfigArgs& a) {
   const Config c = a.config.make();
   if (a.keys) {
-    for (const ConfigKey& k : config_keys()) std::cout << k.name << " = " << config_get(c, k.name) << "  # " << k.help << "\n";
+    for (const ConfigKey& k : config_keys())
+      std::cout << k.name << " = " << config_get(c, k.name) << "  # " << k.help << "\n";
   } else {
     std::cout << config_to_json(c) << "\n";
   }

@@ -57,7 +57,8 @@ void run_inspect(const InspectArgs& a) {
   } else {
     for (auto it = j.begin(); it != j.end(); ++it) std::cout << it.key() << ": " << it.value().dump() << "\n";
     for (const ClipInfo& c : g.clips)
-      std::cout << "clip: " << c.name << " (frames " << c.first_frame << ".." << c.first_frame + c.frame_count - 1 << ")\n";
+      std::cout << "clip: " << c.name << " (frames " << c.first_frame << ".." << c.first_frame + c.frame_count - 1
+                << ")\n";
   }
   const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);

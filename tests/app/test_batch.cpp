@@ -59,7 +59,8 @@ class BatchData : public ::testing::Test {
       synth_write(synth_speaker(s), scratch.string(), refs[i]);
       for (const char* ext : {"bvh", "wav", "tsv"}) {
         fs::create_directories(root / "pool" / ext);
-        fs::copy_file(scratch / (std::string(refs[i]) + "." + ext), root / "pool" / ext / (std::string(refs[i]) + "." + ext));
+        const std::string name = std::string(refs[i]) + "." + ext;
+        fs::copy_file(scratch / name, root / "pool" / ext / name);
       }
     }
     const std::string bvh = slurp(root / "pool" / "bvh" / "ref_a.bvh");
@@ -221,7 +222,8 @@ TEST_F(BatchData, CompletesGoodClipsReportsBrokenOnesAndIsReproducible) {
   for (std::size_t i = 0; i < draw.size(); ++i) pairs += test_stems()[i] + "," + draw[i] + "\n";
   EXPECT_EQ(slurp(out1.path() / "pairs.csv"), pairs);
   const std::string csv = slurp(out1.path() / "summary.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "test_stem,reference_stem,status,frames,fallbacks,failures,seconds,output,error");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "test_stem,reference_stem,status,frames,fallbacks,failures,seconds,output,error");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);
   EXPECT_TRUE(contains(csv, "tst_bad,"));
   const auto j = nlohmann::json::parse(slurp(out1.path() / "summary.json"));
@@ -256,7 +258,8 @@ TEST_F(BatchData, RerunSkipsFinishedClipsUnlessForcedAndCleansTemporaries) {
   TempDir out;
   BatchOptions o = options(out.path().string());
   o.blacklist = (root() / "blacklist.txt").string();
-  write_text(o.blacklist, "# broken capture\n  " + (root() / "pool" / "bvh" / "ref_broken.bvh").string() + "  # cut\n\nnot_in_pool\n");
+  const std::string broken = (root() / "pool" / "bvh" / "ref_broken.bvh").string();
+  write_text(o.blacklist, "# broken capture\n  " + broken + "  # cut\n\nnot_in_pool\n");
   std::ostringstream log;
   const BatchSummary s1 = batch_run(o, Config{}, log);
   EXPECT_EQ(s1.blacklisted, 1);
@@ -445,8 +448,8 @@ TEST_F(BatchData, CommandLineExitCodes) {
             1);
   // Setup error: exit 2.
   EXPECT_EQ(run_cli({"batch", "--pool", out3.path().string(), "--tests", tests_flat(), "-o", out2.path().string()}), 2);
-  EXPECT_EQ(run_cli({"batch", "--pool", pool(), "--tests", tests_flat(), "-o", out3.path().string(), "--set", "nokey=1"}),
-            2);
+  EXPECT_EQ(
+      run_cli({"batch", "--pool", pool(), "--tests", tests_flat(), "-o", out3.path().string(), "--set", "nokey=1"}), 2);
 }
 
 TEST_F(BatchData, TerminalProgressIsOneUpdatingLine) {

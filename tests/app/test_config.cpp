@@ -74,7 +74,8 @@ TEST(ConfigSet, BadValuesNameTheKeyAndTheValue) {
   EXPECT_EQ(error_of([&] { config_set(c, "l_pn", "2.5"); }), "config key 'l_pn': '2.5' is not a whole number");
   EXPECT_EQ(error_of([&] { config_set(c, "lambda_w", "abc"); }), "config key 'lambda_w': 'abc' is not a finite number");
   EXPECT_EQ(error_of([&] { config_set(c, "lambda_w", "inf"); }), "config key 'lambda_w': 'inf' is not a finite number");
-  EXPECT_EQ(error_of([&] { config_set(c, "fallbacks", "maybe"); }), "config key 'fallbacks': 'maybe' is not true or false");
+  EXPECT_EQ(error_of([&] { config_set(c, "fallbacks", "maybe"); }),
+            "config key 'fallbacks': 'maybe' is not true or false");
   EXPECT_EQ(error_of([&] { config_set(c, "seed", "-1"); }), "config key 'seed': must not be negative");
   EXPECT_EQ(error_of([&] { config_set(c, "l_blend", "3000000000"); }), "config key 'l_blend': out of range");
   EXPECT_EQ(c.graph.l_pn, Config{}.graph.l_pn);  // a rejected value changes nothing
@@ -146,7 +147,8 @@ TEST(ConfigLoadFile, WholeNumberKeysAcceptIntegralJsonNumbersOnly) {
   EXPECT_EQ(c.search.lambda_w, 2.0);
   EXPECT_EQ(c.search.w_full, (std::vector<double>{1.0, 0.5}));
   write_text(file, R"({"ignore_rounds": 4.5})");
-  EXPECT_EQ(error_of([&] { config_load_file(c, file); }), file + ": config key 'ignore_rounds': '4.5' is not a whole number");
+  EXPECT_EQ(error_of([&] { config_load_file(c, file); }),
+            file + ": config key 'ignore_rounds': '4.5' is not a whole number");
   write_text(file, R"({"l_pn": 1e30})");
   EXPECT_NE(error_of([&] { config_load_file(c, file); }), "<no error>");
 }
@@ -167,7 +169,8 @@ TEST(ConfigToJson, RoundTripsThroughConfigLoadFile) {
 
   Config changed;
   for (const char* a : {"l_pn=2", "lambda_occ=0.1", "exclude_near=false", "keywords=k.txt", "init=random",
-                        "blend_curve=linear", "lock_joints=Neck,Head", "seed=123456789", "w_full=1,2,3,4,5,6,7,8,9,0.3"})
+                        "blend_curve=linear", "lock_joints=Neck,Head", "seed=123456789",
+                        "w_full=1,2,3,4,5,6,7,8,9,0.3"})
     config_set_assignment(changed, a);
   const std::string text = config_to_json(changed);
   write_text(file, text);

@@ -161,8 +161,8 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
 
   summary.jobs = job_count(options);
   const std::size_t finished = announce(summary, clips, pairing, pool_stems.size(), progress);
-  const std::size_t workers =
-      std::min<std::size_t>(static_cast<std::size_t>(summary.jobs), std::max<std::size_t>(pending_count(summary.clips), 1));
+  const std::size_t to_do = std::max<std::size_t>(pending_count(summary.clips), 1);
+  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(summary.jobs), to_do);
   run_clips(summary, RunSetup{options, clip_config, clips.tests, out_dir, progress}, workers, finished);
   progress.finish();
 

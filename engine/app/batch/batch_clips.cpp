@@ -61,7 +61,8 @@ StemMap scan_clip_folder(const std::string& dir) {
   if (!fs::is_directory(dir, ec)) throw Error(dir + ": not a folder");
   StemMap out;
   scan_files(dir, out);
-  static const std::set<std::string> subfolders = {"bvh", "wav", "tsv", "textgrid", "json", "transcript", "transcripts"};
+  static const std::set<std::string> subfolders = {"bvh",  "wav",        "tsv",        "textgrid",
+                                                   "json", "transcript", "transcripts"};
   std::vector<fs::path> subs;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code ec2;

@@ -68,10 +68,12 @@ struct BatchCliState {
 
 void add_clip_options(CLI::App* sub, BatchOptions& o) {
   sub->add_option("--pool", o.pool_dirs,
-                  "folder of reference clips (BVH + WAV + optional .tsv/.TextGrid/.json with matching stems, flat or in "
-                  "bvh/ wav/ tsv/ subfolders); repeatable");
-  sub->add_option("--pool-manifest", o.pool_manifests, "CSV of reference clips with header stem,bvh,wav,transcript; repeatable");
-  sub->add_option("--tests", o.test_dirs, "folder of test clips (WAV + optional transcript, matching stems); repeatable");
+                  "folder of reference clips (BVH + WAV + optional .tsv/.TextGrid/.json with matching stems, "
+                  "flat or in bvh/ wav/ tsv/ subfolders); repeatable");
+  sub->add_option("--pool-manifest", o.pool_manifests,
+                  "CSV of reference clips with header stem,bvh,wav,transcript; repeatable");
+  sub->add_option("--tests", o.test_dirs,
+                  "folder of test clips (WAV + optional transcript, matching stems); repeatable");
   sub->add_option("--test-manifest", o.test_manifests, "CSV of test clips with header stem,wav,transcript; repeatable");
   sub->add_option("-o,--output", o.output_dir, "output folder (created when missing)")->required();
 }

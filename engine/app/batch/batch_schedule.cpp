@@ -145,7 +145,8 @@ class Scheduler {
       bvh_write(c.output, re.motion);
       if (setup_.options.reports) {
         const std::string json = re.report.dump(2) + "\n";
-        write_file_atomically((setup_.out_dir / (c.test_stem + ".json")).string(), [&](std::ostream& os) { os << json; });
+        const std::string path = (setup_.out_dir / (c.test_stem + ".json")).string();
+        write_file_atomically(path, [&](std::ostream& os) { os << json; });
       }
       c.frames = re.motion.frame_count;
       c.fallbacks = re.plan.fallback_total();
@@ -169,7 +170,8 @@ class Scheduler {
       return;
     }
     const std::string t = fixed(c.seconds, 2) + "s";
-    std::string plain = head + " ok " + t + " (reference " + c.reference_stem + ", " + std::to_string(c.frames) + " frames";
+    std::string plain =
+        head + " ok " + t + " (reference " + c.reference_stem + ", " + std::to_string(c.frames) + " frames";
     if (c.fallbacks) plain += ", " + std::to_string(c.fallbacks) + " fallbacks";
     if (c.failures) plain += ", " + std::to_string(c.failures) + " failures";
     setup_.progress.status(head + " ok " + t, plain + ")");

@@ -65,7 +65,9 @@ ojson summary_json(const BatchSummary& s, const BatchOptions& o, BatchPairing pa
 
 // One clip of a summary.json; a field of the wrong type reads as absent (0 or "").
 PreviousClip previous_clip(const nlohmann::json& p) {
-  const auto text = [&](const char* k) { return p.contains(k) && p[k].is_string() ? p[k].get<std::string>() : std::string(); };
+  const auto text = [&](const char* k) {
+    return p.contains(k) && p[k].is_string() ? p[k].get<std::string>() : std::string();
+  };
   const auto number = [&](const char* k) { return p.contains(k) && p[k].is_number() ? p[k].get<double>() : 0.0; };
   PreviousClip c;
   c.status = enum_from_name(kBatchClipStatusNames, text("status"));
