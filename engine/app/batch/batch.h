@@ -104,18 +104,18 @@ inline constexpr EnumName<BatchClipStatus> kBatchClipStatusNames[] = {
     {BatchClipStatus::Cancelled, "cancelled"}};
 
 struct BatchOptions {
-  std::vector<std::string> pool_dirs;        // --pool DIR (repeatable)
-  std::vector<std::string> pool_manifests;   // --pool-manifest CSV (repeatable)
-  std::vector<std::string> test_dirs;        // --tests DIR (repeatable)
-  std::vector<std::string> test_manifests;   // --test-manifest CSV (repeatable)
-  std::string output_dir;                    // -o OUTDIR (created when missing)
+  std::vector<std::string> pool_dirs;         // --pool DIR (repeatable)
+  std::vector<std::string> pool_manifests;    // --pool-manifest CSV (repeatable)
+  std::vector<std::string> test_dirs;         // --tests DIR (repeatable)
+  std::vector<std::string> test_manifests;    // --test-manifest CSV (repeatable)
+  std::string output_dir;                     // -o OUTDIR (created when missing)
   BatchPairing pairing = BatchPairing::Auto;  // --pairing
-  std::string pairs_manifest;                // --manifest pairs.csv
-  std::string blacklist;                     // --blacklist FILE ("" = none)
-  std::optional<std::uint64_t> seed;         // --seed: pairing draw and reenactment; unset = config.seed
-  int jobs = 0;                              // --jobs: worker threads; 0 = all cores
-  bool force = false;                        // --force: redo clips whose output exists
-  bool reports = false;                      // --reports: also write OUTDIR/<stem>.json
+  std::string pairs_manifest;                 // --manifest pairs.csv
+  std::string blacklist;                      // --blacklist FILE ("" = none)
+  std::optional<std::uint64_t> seed;          // --seed: pairing draw and reenactment; unset = config.seed
+  int jobs = 0;                               // --jobs: worker threads; 0 = all cores
+  bool force = false;                         // --force: redo clips whose output exists
+  bool reports = false;                       // --reports: also write OUTDIR/<stem>.json
   BatchProgress progress = BatchProgress::Auto;
   // When set and it becomes true, no further clip or graph build starts; clips under way finish,
   // the summary is written (remaining clips "cancelled") and BatchSummary::interrupted is true.
