@@ -1,5 +1,6 @@
 #include "engine/app/config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <functional>
@@ -9,6 +10,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace {
@@ -35,18 +37,8 @@ bool parse_bool(const std::string& key, const std::string& v) {
   throw Error("config key '" + key + "': '" + v + "' is not true or false");
 }
 
-std::vector<std::string> split_list(const std::string& v) {
-  std::vector<std::string> out;
-  std::string item;
-  std::istringstream in(v);
-  while (std::getline(in, item, ',')) {
-    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
-    while (!item.empty() && item.back() == ' ') item.pop_back();
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
+// 17 significant digits (not format_number's shortest round-trip text) because `gmg config
+// --keys` prints this and must stay byte-identical until the switch is made deliberately.
 std::string format_double(double v) {
   std::ostringstream os;
   os.precision(17);
@@ -58,6 +50,7 @@ struct Accessor {
   ConfigKey key;
   std::function<void(Config&, const std::string&)> set;
   std::function<std::string(const Config&)> get;
+  bool whole = false;  // the value is a whole number (a JSON 4.0 is read as 4)
 };
 
 template <typename T>
@@ -74,7 +67,8 @@ Accessor int_key(const char* name, const char* help, T Config::*group, int(T::*f
             if (x < -1000000000LL || x > 1000000000LL) throw Error(std::string("config key '") + name + "': out of range");
             (c.*group).*field = static_cast<int>(x);
           },
-          [=](const Config& c) { return std::to_string((c.*group).*field); }};
+          [=](const Config& c) { return std::to_string((c.*group).*field); },
+          true};
 }
 template <typename T>
 Accessor bool_key(const char* name, const char* help, T Config::*group, bool(T::*field)) {
@@ -121,7 +115,7 @@ const std::vector<Accessor>& accessors() {
       {{"w_full", "feature element weights, comma separated"},
        [](Config& c, const std::string& v) {
          c.search.w_full.clear();
-         for (const std::string& item : split_list(v)) c.search.w_full.push_back(parse_double("w_full", item));
+         for (const std::string& item : split_trimmed(v, ',')) c.search.w_full.push_back(parse_double("w_full", item));
        },
        [](const Config& c) {
          std::string s;
@@ -139,7 +133,7 @@ const std::vector<Accessor>& accessors() {
       enum_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)",
                &Config::blend, &BlendParams::mode, kBlendModeNames),
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
-       [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_list(v); },
+       [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_trimmed(v, ','); },
        [](const Config& c) {
          std::string s;
          for (const std::string& j : c.cleanup.lock_joints) s += (s.empty() ? "" : ",") + j;
@@ -153,7 +147,8 @@ const std::vector<Accessor>& accessors() {
          if (x < 0) throw Error("config key 'seed': must not be negative");
          c.seed = static_cast<std::uint64_t>(x);
        },
-       [](const Config& c) { return std::to_string(c.seed); }},
+       [](const Config& c) { return std::to_string(c.seed); },
+       true},
   };
   return table;
 }
@@ -187,6 +182,31 @@ void config_set_assignment(Config& config, const std::string& assignment) {
 
 std::string config_get(const Config& config, const std::string& key) { return find_accessor(key).get(config); }
 
+namespace {
+
+// The text config_set expects for a JSON value: a string as is, an array as a comma-separated
+// list, a number of a whole-number key with an integral value as that integer (config_to_json
+// writes every number as a JSON double, e.g. 4.0), anything else as JSON.
+std::string json_value_text(const std::string& key, const nlohmann::json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string text;
+    for (const auto& item : v)
+      text += (text.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>() : item.dump());
+    return text;
+  }
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    const bool whole_key = std::any_of(accessors().begin(), accessors().end(),
+                                       [&](const Accessor& a) { return a.key.name == key && a.whole; });
+    if (whole_key && std::trunc(d) == d && std::abs(d) < 9007199254740992.0)  // 2^53: every integer exact
+      return std::to_string(static_cast<long long>(d));
+  }
+  return v.dump();
+}
+
+}  // namespace
+
 void config_load_file(Config& config, const std::string& path) {
   const std::string text = read_file_bytes(path);
   nlohmann::json j;
@@ -197,16 +217,8 @@ void config_load_file(Config& config, const std::string& path) {
   }
   if (!j.is_object()) throw Error(path + ": a config file must be a JSON object of \"key\": value");
   for (auto it = j.begin(); it != j.end(); ++it) {
-    std::string value;
-    if (it.value().is_string()) {
-      value = it.value().get<std::string>();
-    } else if (it.value().is_array()) {
-      for (const auto& item : it.value()) value += (value.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>() : item.dump());
-    } else {
-      value = it.value().dump();
-    }
     try {
-      config_set(config, it.key(), value);
+      config_set(config, it.key(), json_value_text(it.key(), it.value()));
     } catch (const Error& e) {
       throw Error(path + ": " + e.what());
     }

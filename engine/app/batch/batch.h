@@ -62,6 +62,7 @@
 #include <vector>
 
 #include "engine/app/config.h"
+#include "engine/core/enum_names.h"
 
 namespace CLI {
 class App;
@@ -76,21 +77,45 @@ enum class BatchProgress {
   Lines,     // always plain lines
   Quiet,     // nothing
 };
+// The choices of `gmg batch --progress` (Terminal is for tests: a pipe cannot be a terminal).
+inline constexpr EnumName<BatchProgress> kBatchProgressNames[] = {
+    {BatchProgress::Auto, "auto"}, {BatchProgress::Lines, "lines"}, {BatchProgress::Quiet, "none"}};
+
+enum class BatchPairing {
+  Auto,      // Manifest when BatchOptions::pairs_manifest is set, else Random
+  Random,    // the seeded draw (batch_draw_references)
+  Manifest,  // the pairs of BatchOptions::pairs_manifest
+};
+// The choices of `gmg batch --pairing`, and the names in the summary and progress lines.
+inline constexpr EnumName<BatchPairing> kBatchPairingNames[] = {{BatchPairing::Random, "random"},
+                                                               {BatchPairing::Manifest, "manifest"}};
+
+enum class BatchClipStatus {
+  Pending,    // not decided yet; never left in a returned summary
+  Ok,         // made
+  Failed,     // could not be made (BatchClipResult::error says why)
+  Skipped,    // its output existed (and --force was not given)
+  Cancelled,  // not started: the run was interrupted
+};
+// The names in summary.csv and summary.json.
+inline constexpr EnumName<BatchClipStatus> kBatchClipStatusNames[] = {
+    {BatchClipStatus::Pending, "pending"}, {BatchClipStatus::Ok, "ok"},
+    {BatchClipStatus::Failed, "failed"},   {BatchClipStatus::Skipped, "skipped"},
+    {BatchClipStatus::Cancelled, "cancelled"}};
 
 struct BatchOptions {
-  std::vector<std::string> pool_dirs;        // --pool DIR (repeatable)
-  std::vector<std::string> pool_manifests;   // --pool-manifest CSV (repeatable)
-  std::vector<std::string> test_dirs;        // --tests DIR (repeatable)
-  std::vector<std::string> test_manifests;   // --test-manifest CSV (repeatable)
-  std::string output_dir;                    // -o OUTDIR (created when missing)
-  std::string pairing;                       // "random", "manifest", or "" = manifest when
-                                             // pairs_manifest is set, else random
-  std::string pairs_manifest;                // --manifest pairs.csv
-  std::string blacklist;                     // --blacklist FILE ("" = none)
-  std::optional<std::uint64_t> seed;         // --seed: pairing draw and reenactment; unset = config.seed
-  int jobs = 0;                              // --jobs: worker threads; 0 = all cores
-  bool force = false;                        // --force: redo clips whose output exists
-  bool reports = false;                      // --reports: also write OUTDIR/<stem>.json
+  std::vector<std::string> pool_dirs;         // --pool DIR (repeatable)
+  std::vector<std::string> pool_manifests;    // --pool-manifest CSV (repeatable)
+  std::vector<std::string> test_dirs;         // --tests DIR (repeatable)
+  std::vector<std::string> test_manifests;    // --test-manifest CSV (repeatable)
+  std::string output_dir;                     // -o OUTDIR (created when missing)
+  BatchPairing pairing = BatchPairing::Auto;  // --pairing
+  std::string pairs_manifest;                 // --manifest pairs.csv
+  std::string blacklist;                      // --blacklist FILE ("" = none)
+  std::optional<std::uint64_t> seed;          // --seed: pairing draw and reenactment; unset = config.seed
+  int jobs = 0;                               // --jobs: worker threads; 0 = all cores
+  bool force = false;                         // --force: redo clips whose output exists
+  bool reports = false;                       // --reports: also write OUTDIR/<stem>.json
   BatchProgress progress = BatchProgress::Auto;
   // When set and it becomes true, no further clip or graph build starts; clips under way finish,
   // the summary is written (remaining clips "cancelled") and BatchSummary::interrupted is true.
@@ -99,8 +124,9 @@ struct BatchOptions {
 
 struct BatchClipResult {
   std::string test_stem, reference_stem, output, error;
-  std::string status;        // "ok", "failed", "skipped" (output existed) or "cancelled"
-  int frames = 0, fallbacks = 0, failures = 0;  // from the reenactment report's totals
+  BatchClipStatus status = BatchClipStatus::Pending;
+  int frames = 0, fallbacks = 0, failures = 0;  // the reenactment's frames and its plan's
+                                                // fallback and failure counts
   double seconds = 0;        // this clip's own work (speech analysis, search, writing); not the
                              // graph build and not time spent waiting for it. For a skipped clip,
                              // frames..seconds are the previous run's (0 when unknown).

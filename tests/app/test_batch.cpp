@@ -25,6 +25,10 @@
 #include "tests/test_support.h"
 
 namespace gmg {
+
+// Status names in failure messages.
+std::ostream& operator<<(std::ostream& os, BatchClipStatus s) { return os << enum_name(kBatchClipStatusNames, s); }
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -55,7 +59,8 @@ class BatchData : public ::testing::Test {
       synth_write(synth_speaker(s), scratch.string(), refs[i]);
       for (const char* ext : {"bvh", "wav", "tsv"}) {
         fs::create_directories(root / "pool" / ext);
-        fs::copy_file(scratch / (std::string(refs[i]) + "." + ext), root / "pool" / ext / (std::string(refs[i]) + "." + ext));
+        const std::string name = std::string(refs[i]) + "." + ext;
+        fs::copy_file(scratch / name, root / "pool" / ext / name);
       }
     }
     const std::string bvh = slurp(root / "pool" / "bvh" / "ref_a.bvh");
@@ -177,17 +182,17 @@ TEST_F(BatchData, CompletesGoodClipsReportsBrokenOnesAndIsReproducible) {
     EXPECT_EQ(c.test_stem, test_stems()[i]);
     EXPECT_EQ(c.reference_stem, draw[i]) << c.test_stem;
     if (c.test_stem == "tst_bad") {
-      EXPECT_EQ(c.status, "failed");
+      EXPECT_EQ(c.status, BatchClipStatus::Failed);
       EXPECT_TRUE(contains(c.error, "tst_bad.wav")) << c.error;
       EXPECT_FALSE(fs::exists(out1.path() / "tst_bad.bvh"));
       ++expect_failed;
     } else if (c.reference_stem == "ref_broken") {
-      EXPECT_EQ(c.status, "failed");
+      EXPECT_EQ(c.status, BatchClipStatus::Failed);
       EXPECT_TRUE(contains(c.error, "ref_broken.bvh")) << c.error;
       EXPECT_FALSE(fs::exists(out1.path() / (c.test_stem + ".bvh")));
       ++expect_failed;
     } else {
-      ASSERT_EQ(c.status, "ok") << c.test_stem << ": " << c.error;
+      ASSERT_EQ(c.status, BatchClipStatus::Ok) << c.test_stem << ": " << c.error;
       EXPECT_TRUE(c.error.empty());
       EXPECT_EQ(c.output, (out1.path() / (c.test_stem + ".bvh")).string());
       const Motion m = bvh_read(c.output);
@@ -217,7 +222,8 @@ TEST_F(BatchData, CompletesGoodClipsReportsBrokenOnesAndIsReproducible) {
   for (std::size_t i = 0; i < draw.size(); ++i) pairs += test_stems()[i] + "," + draw[i] + "\n";
   EXPECT_EQ(slurp(out1.path() / "pairs.csv"), pairs);
   const std::string csv = slurp(out1.path() / "summary.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "test_stem,reference_stem,status,frames,fallbacks,failures,seconds,output,error");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "test_stem,reference_stem,status,frames,fallbacks,failures,seconds,output,error");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);
   EXPECT_TRUE(contains(csv, "tst_bad,"));
   const auto j = nlohmann::json::parse(slurp(out1.path() / "summary.json"));
@@ -243,7 +249,7 @@ TEST_F(BatchData, CompletesGoodClipsReportsBrokenOnesAndIsReproducible) {
   EXPECT_EQ(s2.failed, s.failed);
   EXPECT_EQ(slurp(out2.path() / "pairs.csv"), pairs);
   for (const BatchClipResult& c : s.clips) {
-    if (c.status != "ok") continue;
+    if (c.status != BatchClipStatus::Ok) continue;
     EXPECT_EQ(slurp(out1.path() / (c.test_stem + ".bvh")), slurp(out2.path() / (c.test_stem + ".bvh"))) << c.test_stem;
   }
 }
@@ -252,7 +258,8 @@ TEST_F(BatchData, RerunSkipsFinishedClipsUnlessForcedAndCleansTemporaries) {
   TempDir out;
   BatchOptions o = options(out.path().string());
   o.blacklist = (root() / "blacklist.txt").string();
-  write_text(o.blacklist, "# broken capture\n  " + (root() / "pool" / "bvh" / "ref_broken.bvh").string() + "  # cut\n\nnot_in_pool\n");
+  const std::string broken = (root() / "pool" / "bvh" / "ref_broken.bvh").string();
+  write_text(o.blacklist, "# broken capture\n  " + broken + "  # cut\n\nnot_in_pool\n");
   std::ostringstream log;
   const BatchSummary s1 = batch_run(o, Config{}, log);
   EXPECT_EQ(s1.blacklisted, 1);
@@ -271,13 +278,13 @@ TEST_F(BatchData, RerunSkipsFinishedClipsUnlessForcedAndCleansTemporaries) {
   const auto m2 = by_stem(s2);
   EXPECT_EQ(s2.skipped, 4);
   EXPECT_EQ(s2.ok, 1);
-  EXPECT_EQ(m2.at("tst_03")->status, "ok");
+  EXPECT_EQ(m2.at("tst_03")->status, BatchClipStatus::Ok);
   EXPECT_TRUE(m2.at("tst_02")->skipped_existing);
-  EXPECT_EQ(m2.at("tst_02")->status, "skipped");
+  EXPECT_EQ(m2.at("tst_02")->status, BatchClipStatus::Skipped);
   EXPECT_GT(m2.at("tst_02")->frames, 0);  // the previous summary's figures carry over
   EXPECT_EQ(m2.at("tst_02")->frames, by_stem(s1).at("tst_02")->frames);
   EXPECT_EQ(m2.at("tst_02")->reference_stem, by_stem(s1).at("tst_02")->reference_stem);
-  EXPECT_EQ(m2.at("tst_bad")->status, "failed");  // failed clips are retried
+  EXPECT_EQ(m2.at("tst_bad")->status, BatchClipStatus::Failed);  // failed clips are retried
   EXPECT_EQ(fs::last_write_time(out.path() / "tst_02.bvh"), mtime);
   EXPECT_EQ(slurp(out.path() / "pairs.csv"), pairs1);
   EXPECT_FALSE(has_temporaries(out.path()));
@@ -301,7 +308,7 @@ TEST_F(BatchData, CancelledRunLeavesNoPartialOutputAndResumes) {
   const BatchSummary s = batch_run(o, Config{}, log);
   EXPECT_TRUE(s.interrupted);
   EXPECT_EQ(s.cancelled, 6);
-  for (const BatchClipResult& c : s.clips) EXPECT_EQ(c.status, "cancelled");
+  for (const BatchClipResult& c : s.clips) EXPECT_EQ(c.status, BatchClipStatus::Cancelled);
   EXPECT_TRUE(fs::exists(out.path() / "pairs.csv"));
   EXPECT_TRUE(fs::exists(out.path() / "summary.json"));
   EXPECT_FALSE(fs::exists(out.path() / "tst_01.bvh"));
@@ -340,14 +347,14 @@ TEST_F(BatchData, ManifestPairingAndClipManifests) {
   std::ostringstream log;
   const BatchSummary s = batch_run(o, Config{}, log);
   const auto m = by_stem(s);
-  EXPECT_EQ(m.at("tst_01")->status, "ok");
+  EXPECT_EQ(m.at("tst_01")->status, BatchClipStatus::Ok);
   EXPECT_EQ(m.at("tst_01")->reference_stem, "A");
-  EXPECT_EQ(m.at("tst_02")->status, "ok");
-  EXPECT_EQ(m.at("tst_03")->status, "failed");  // reference files missing
+  EXPECT_EQ(m.at("tst_02")->status, BatchClipStatus::Ok);
+  EXPECT_EQ(m.at("tst_03")->status, BatchClipStatus::Failed);  // reference files missing
   EXPECT_TRUE(contains(m.at("tst_03")->error, "nope.bvh")) << m.at("tst_03")->error;
-  EXPECT_EQ(m.at("tst_04")->status, "failed");
+  EXPECT_EQ(m.at("tst_04")->status, BatchClipStatus::Failed);
   EXPECT_TRUE(contains(m.at("tst_04")->error, "not in the pool")) << m.at("tst_04")->error;
-  EXPECT_EQ(m.at("tst_05")->status, "failed");
+  EXPECT_EQ(m.at("tst_05")->status, BatchClipStatus::Failed);
   EXPECT_TRUE(contains(m.at("tst_05")->error, "not paired")) << m.at("tst_05")->error;
   EXPECT_TRUE(log.str().empty());
 
@@ -358,13 +365,13 @@ TEST_F(BatchData, ManifestPairingAndClipManifests) {
   batch_run(o2, Config{}, log);
   TempDir out3;
   BatchOptions o3 = options(out3.path().string());
-  o3.pairing = "manifest";
+  o3.pairing = BatchPairing::Manifest;
   o3.pairs_manifest = (out2.path() / "pairs.csv").string();
   o3.seed = 3;
   const BatchSummary s3 = batch_run(o3, Config{}, log);
   EXPECT_EQ(slurp(out3.path() / "pairs.csv"), slurp(out2.path() / "pairs.csv"));
   for (const BatchClipResult& c : s3.clips)
-    if (c.status == "ok") {
+    if (c.status == BatchClipStatus::Ok) {
       EXPECT_EQ(slurp(out3.path() / (c.test_stem + ".bvh")), slurp(out2.path() / (c.test_stem + ".bvh")));
     }
 
@@ -400,7 +407,7 @@ TEST_F(BatchData, SetupErrors) {
   o = options(tests_flat());
   EXPECT_TRUE(contains(message(o), "input folder")) << message(o);
   o = options(out.path().string());
-  o.pairing = "manifest";
+  o.pairing = BatchPairing::Manifest;
   EXPECT_TRUE(contains(message(o), "--manifest")) << message(o);
   o = options(out.path().string());
   o.jobs = -1;
@@ -441,8 +448,8 @@ TEST_F(BatchData, CommandLineExitCodes) {
             1);
   // Setup error: exit 2.
   EXPECT_EQ(run_cli({"batch", "--pool", out3.path().string(), "--tests", tests_flat(), "-o", out2.path().string()}), 2);
-  EXPECT_EQ(run_cli({"batch", "--pool", pool(), "--tests", tests_flat(), "-o", out3.path().string(), "--set", "nokey=1"}),
-            2);
+  EXPECT_EQ(
+      run_cli({"batch", "--pool", pool(), "--tests", tests_flat(), "-o", out3.path().string(), "--set", "nokey=1"}), 2);
 }
 
 TEST_F(BatchData, TerminalProgressIsOneUpdatingLine) {
@@ -494,7 +501,7 @@ TEST(BatchRealData, BeatAndZeggsPool) {
   EXPECT_EQ(s.failed, 0) << log.str();
   std::set<std::string> used;
   for (const BatchClipResult& c : s.clips) {
-    ASSERT_EQ(c.status, "ok") << c.test_stem << ": " << c.error;
+    ASSERT_EQ(c.status, BatchClipStatus::Ok) << c.test_stem << ": " << c.error;
     used.insert(c.reference_stem);
     const Motion out = bvh_read(c.output);
     const std::string ref_dir = c.reference_stem == "2_scott_0_1_1" ? "beat2_scott" : "zeggs";

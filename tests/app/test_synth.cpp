@@ -1,4 +1,4 @@
-// Tests of engine/synth: the procedural synthetic speaker used by the demo, tests and benchmarks.
+// Tests of engine/app/synth: the procedural synthetic speaker used by the demo, tests and benchmarks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,7 +36,8 @@ SynthSpec spec_of(double duration, std::uint64_t seed, double style = 0.0) {
 std::vector<glm::dvec3> joint_track(const gmg::Motion& m, int j) {
   const Eigen::MatrixXd p = gmg::motion_forward_kinematics(m);
   std::vector<glm::dvec3> out(static_cast<std::size_t>(m.frame_count));
-  for (int f = 0; f < m.frame_count; ++f) out[static_cast<std::size_t>(f)] = {p(f, 3 * j), p(f, 3 * j + 1), p(f, 3 * j + 2)};
+  for (int f = 0; f < m.frame_count; ++f)
+    out[static_cast<std::size_t>(f)] = {p(f, 3 * j), p(f, 3 * j + 1), p(f, 3 * j + 2)};
   return out;
 }
 
@@ -83,7 +84,8 @@ TEST(Synth, SizesAndTranscriptShape) {
     const SynthClip clip = gmg::synth_speaker(s);
     SCOPED_TRACE(k.duration);
     EXPECT_EQ(clip.motion.frame_count, std::lround(k.duration * k.fps));
-    EXPECT_EQ(clip.motion.rotations.size(), static_cast<std::size_t>(clip.motion.frame_count * clip.motion.joint_count()));
+    EXPECT_EQ(clip.motion.rotations.size(),
+              static_cast<std::size_t>(clip.motion.frame_count * clip.motion.joint_count()));
     EXPECT_EQ(clip.motion.translations.size(), clip.motion.rotations.size());
     EXPECT_DOUBLE_EQ(clip.motion.fps, k.fps);
     EXPECT_EQ(clip.audio.sample_rate, k.rate);

@@ -1,0 +1,157 @@
+// Internals of `gmg batch` shared by its files; the interface is batch.h.
+//
+//   batch.cpp           batch_run: the steps in order (options, clips, pairing, results, run,
+//                       records)
+//   batch_clips.cpp     clip discovery: folders (flat and GENEA subfolders), clip manifests
+//   batch_pairing.cpp   the pairing draw, the blacklist, the pairs manifest and pairs.csv
+//   batch_output.cpp    the output folder: checks and stale temporary files
+//   batch_progress.cpp  the progress display
+//   batch_schedule.cpp  the workers: graph builds shared by the clips that drew them
+//   batch_summary.cpp   summary.csv/summary.json, and the previous run's figures
+//   batch_command.cpp   the `batch` subcommand
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "engine/app/batch/batch.h"
+
+namespace gmg::batch_internal {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// v with `decimals` digits after the point ("1.50"), for progress lines and summary.csv.
+std::string fixed(double v, int decimals);
+
+// ---- Clips (batch_clips.cpp) ----------------------------------------------------------------
+
+struct ClipFiles {
+  std::string stem, bvh, wav, transcript;  // bvh is empty for a test clip
+  std::string origin;                      // folder or "manifest:line", for messages
+};
+
+using ClipMap = std::map<std::string, ClipFiles>;  // by stem
+
+struct Clips {
+  ClipMap pool, tests;
+  std::vector<std::string> notes;  // files found but not used (a BVH without WAV in a pool)
+};
+
+// Every pool and test clip of the options' folders and manifests (see batch.h). Throws
+// gmg::Error on a setup problem: an unreadable folder or manifest, a stem given twice, no pool
+// or no test clip at all.
+Clips collect_clips(const BatchOptions& options);
+
+// ---- Pairing (batch_pairing.cpp) ------------------------------------------------------------
+
+// Pool stems listed in a blacklist file (see batch.h).
+std::set<std::string> read_blacklist(const std::string& path);
+
+// A pairs manifest: test stem -> reference stem. With `strict`, malformed rows and a test paired
+// twice are errors naming the file and line; otherwise they are skipped (the last pair wins).
+std::map<std::string, std::string> read_pairs(const std::string& path, bool strict);
+
+// The reference of each test clip (in stem order); error[i] non-empty when test i cannot be
+// paired (that clip fails, the others go on).
+struct Pairing {
+  std::vector<std::string> test_stems, references, errors;
+};
+
+// Pairs the test clips by `mode` (Random or Manifest) with `pool_stems` (sorted, blacklist
+// removed). Throws gmg::Error when the pairs manifest cannot be read or names an unknown test.
+Pairing pair_tests(const BatchOptions& options, BatchPairing mode, const Clips& clips,
+                   const std::set<std::string>& blacklist, const std::vector<std::string>& pool_stems,
+                   std::uint64_t seed);
+
+// The pairs of a previous run's OUTDIR/pairs.csv (empty when there is none or it is unreadable).
+std::map<std::string, std::string> read_previous_pairs(const fs::path& out_dir);
+
+// OUTDIR/pairs.csv: test_stem,reference_stem for every paired clip.
+void write_pairs_csv(const fs::path& out_dir, const std::vector<BatchClipResult>& clips);
+
+// ---- Progress (batch_progress.cpp) ----------------------------------------------------------
+
+// Lines that stay and, on a terminal, one updating status line below them. Thread-safe.
+class Progress {
+ public:
+  Progress(std::ostream& os, BatchProgress mode);
+
+  // A line that stays.
+  void line(const std::string& s);
+  // The updating status line (on a terminal), else `plain` as a line.
+  void status(const std::string& short_text, const std::string& plain);
+  // Ends the status line.
+  void finish();
+
+ private:
+  std::size_t columns() const;
+
+  std::ostream& os_;
+  bool terminal_ = false, quiet_ = false;
+  int fd_ = -1;
+  std::mutex m_;
+  std::string status_;
+};
+
+// ---- Output folder (batch_output.cpp) -------------------------------------------------------
+
+// Creates OUTDIR, refuses one that is an input folder, removes stale temporary files of a
+// killed run (reported on `progress`).
+fs::path prepare_output_folder(const BatchOptions& options, Progress& progress);
+
+// ---- Summary (batch_summary.cpp) ------------------------------------------------------------
+
+// A clip's figures in a previous run's summary.json.
+struct PreviousClip {
+  std::optional<BatchClipStatus> status;
+  std::string reference;
+  double frames = 0, fallbacks = 0, failures = 0, seconds = 0;
+};
+
+// The clips of OUTDIR/summary.json by test stem (empty when there is none or it is unreadable).
+std::map<std::string, PreviousClip> read_previous_summary(const fs::path& out_dir);
+
+// A skipped clip takes its frames..seconds from the previous run when that made it (ok or
+// skipped) with the same reference, so a resumed run's summary still covers every clip.
+void carry_over_previous(BatchClipResult& clip, const std::map<std::string, PreviousClip>& previous);
+
+// Pending clips become cancelled; counts the statuses into summary.ok..cancelled.
+void count_statuses(BatchSummary& summary);
+
+// OUTDIR/summary.csv and OUTDIR/summary.json.
+void write_summary_files(const fs::path& out_dir, const BatchSummary& summary, const BatchOptions& options,
+                         BatchPairing pairing);
+
+// The last progress line: counts, times and where the summary is.
+std::string summary_line(const BatchSummary& summary, const fs::path& out_dir);
+
+// ---- Scheduling (batch_schedule.cpp) --------------------------------------------------------
+
+struct RunSetup {
+  const BatchOptions& options;
+  const Config& config;  // every clip's (the seed applied)
+  const ClipMap& tests;
+  const fs::path& out_dir;
+  Progress& progress;
+};
+
+// Makes every pending clip of summary.clips with `worker_count` threads, building each
+// reference of summary.references once, when the first clip needing it starts. `finished` is
+// the count of clips already decided (for the "[k/N]" lines). Stops starting work when
+// options.cancel is raised.
+void run_clips(BatchSummary& summary, const RunSetup& setup, std::size_t worker_count, std::size_t finished);
+
+}  // namespace gmg::batch_internal

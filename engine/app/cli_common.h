@@ -1,0 +1,50 @@
+// Internal to the command-line tool: the helpers its subcommands share and the function that
+// registers each subcommand (engine/app/cli_<name>.cpp). Each add_<name>_command adds the
+// subcommand with its options to app and sets its callback; the options' storage lives as long
+// as the callback (and so as app). A callback reports a problem by throwing gmg::Error; cli_main
+// prints it and exits with 1.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/app/config.h"
+
+namespace CLI {
+class App;
+}
+
+namespace gmg {
+
+// --config FILE and --set key=value (and optionally --seed), shared by the subcommands that take
+// parameters.
+struct ConfigOptions {
+  std::string file;
+  std::vector<std::string> sets;
+  std::optional<std::uint64_t> seed;
+
+  void add(CLI::App* cmd, bool with_seed);
+  // The defaults, then the file, then each --set, then --seed; validated.
+  Config make() const;
+};
+
+// "none" means the clip has no transcript (so a transcript can be left out inside a list).
+std::string transcript_or_none(const std::string& t);
+
+// Writes j indented by 2 with a final newline, atomically.
+void write_json_file(const std::string& path, const nlohmann::ordered_json& j);
+
+void add_build_command(CLI::App& app);
+void add_inspect_command(CLI::App& app);
+void add_reenact_command(CLI::App& app);
+void add_evaluate_command(CLI::App& app);
+void add_ablation_command(CLI::App& app);
+void add_synth_command(CLI::App& app);
+void add_config_command(CLI::App& app);
+// add_batch_command: engine/app/batch/batch.h.
+
+}  // namespace gmg

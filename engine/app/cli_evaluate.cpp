@@ -1,0 +1,52 @@
+// `gmg evaluate`: objective metrics of a generated motion.
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/app/cli_common.h"
+#include "engine/app/evaluate_files.h"
+
+namespace gmg {
+namespace {
+
+struct EvaluateArgs {
+  EvaluateInputs inputs;
+  EvaluateOptions options;
+  std::string bins = "overflow";
+  bool json = false;
+  std::string output;
+};
+
+void run_evaluate(EvaluateArgs& a) {
+  a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
+  const EvaluateResult r = evaluate_files(a.inputs, a.options);
+  for (const std::string& w : r.warnings) std::cerr << "gmg: warning: " << w << "\n";
+  if (!a.output.empty()) write_json_file(a.output, r.json);
+  std::cout << (a.json ? r.json.dump() : r.json.dump(2)) << "\n";
+}
+
+}  // namespace
+
+void add_evaluate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("evaluate", "objective metrics of a generated motion");
+  auto a = std::make_shared<EvaluateArgs>();
+  EvaluateInputs& in = a->inputs;
+  cmd->add_option("--generated", in.generated, "generated BVH")->required();
+  cmd->add_option("--truth", in.truth, "ground-truth BVH (same skeleton and length)");
+  cmd->add_option("--audio", in.audio, "the speech WAV (beat consistency and speech correlation, with a control)");
+  cmd->add_option("--report", in.report, "the reenactment report (failures, fallbacks, transitions, junctions)");
+  cmd->add_option("--reference", in.reference,
+                  "the reference capture, BVH or graph (.gmg): jump threshold, and ratios when there is no truth");
+  cmd->add_flag("--trim", in.trim, "cut the longer of generated and truth to the shorter (with a warning)");
+  cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
+      ->check(CLI::IsMember({"overflow", "genea"}))
+      ->capture_default_str();
+  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")->capture_default_str();
+  cmd->add_option("--plot", in.plot, "draw speeds, onset strength, onsets and junctions over time (.png or .svg)");
+  cmd->add_flag("--json", a->json, "print one JSON object on standard output");
+  cmd->add_option("-o,--output", a->output, "also write the JSON to this file");
+  cmd->callback([a] { run_evaluate(*a); });
+}
+
+}  // namespace gmg
