@@ -64,8 +64,8 @@ std::vector<MelBand> make_mel_bank() {
     band.first = -1;
     for (int k = 0; k < kBins; ++k) {
       const double f = static_cast<double>(k) * kSr / kNfft;  // np.fft.rfftfreq
-      const double lower = (f - lo) / (mid - lo);  // -ramps[i] / fdiff[i]
-      const double upper = (hi - f) / (hi - mid);  // ramps[i+2] / fdiff[i+1]
+      const double lower = (f - lo) / (mid - lo);             // -ramps[i] / fdiff[i]
+      const double upper = (hi - f) / (hi - mid);             // ramps[i+2] / fdiff[i+1]
       const double w = std::max(0.0, std::min(lower, upper));
       if (w > 0.0) {
         if (band.first < 0) band.first = k;
@@ -161,9 +161,9 @@ std::vector<float> onset_strength_envelope(const Audio& audio) {
     const long long start = t * kHop - kNfft / 2;
     for (int i = 0; i < kNfft; ++i) {
       const long long j = start + i;
-      fft.in->data[i] = static_cast<smpl_t>(
-          (j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[static_cast<std::size_t>(j)])
-                            : 0.0);
+      fft.in->data[i] = static_cast<smpl_t>((j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] *
+                                                                    static_cast<double>(y[static_cast<std::size_t>(j)])
+                                                              : 0.0);
     }
     // Power spectrogram |X|^2 from aubio's packed complex spectrum
     // [re 0, re 1 .. re N/2, im N/2-1 .. im 1] (aubio_fft_do would also
@@ -276,7 +276,7 @@ OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, cons
   }
   for (int p : a.peak_frames) {
     auto it = std::upper_bound(minima.begin(), minima.end(), p);  // first minimum > p
-    a.onset_frames.push_back(*(it - 1));                            // minima[0] = 0 <= p
+    a.onset_frames.push_back(*(it - 1));                          // minima[0] = 0 <= p
   }
   return a;
 }

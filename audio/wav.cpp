@@ -42,9 +42,7 @@ class Bytes {
   std::size_t size_;
 };
 
-std::uint16_t u16_at(const Bytes& b, std::size_t p) {
-  return static_cast<std::uint16_t>(b[p] | (b[p + 1] << 8));
-}
+std::uint16_t u16_at(const Bytes& b, std::size_t p) { return static_cast<std::uint16_t>(b[p] | (b[p + 1] << 8)); }
 
 std::uint32_t u32_at(const Bytes& b, std::size_t p) {
   return static_cast<std::uint32_t>(b[p]) | (static_cast<std::uint32_t>(b[p + 1]) << 8) |
@@ -72,9 +70,7 @@ std::string fourcc(const Bytes& b, std::size_t p) {
   return os.str();
 }
 
-bool id_is(const Bytes& b, std::size_t p, const char* id) {
-  return std::memcmp(b.data() + p, id, 4) == 0;
-}
+bool id_is(const Bytes& b, std::size_t p, const char* id) { return std::memcmp(b.data() + p, id, 4) == 0; }
 
 // What the fmt chunk says, reduced to what decoding needs.
 struct Format {
@@ -106,8 +102,7 @@ Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::
   if (tag == kTagExtensible) {
     if (size < 40) {
       throw Error(error_at_byte(path, static_cast<long long>(pos),
-                                "WAVE_FORMAT_EXTENSIBLE 'fmt ' chunk is " + std::to_string(size) +
-                                    " bytes, needs 40"));
+                                "WAVE_FORMAT_EXTENSIBLE 'fmt ' chunk is " + std::to_string(size) + " bytes, needs 40"));
     }
     // SubFormat GUID: the first two bytes are the format code, the other 14
     // are the fixed KSDATAFORMAT suffix 00000000-0010-8000-00AA00389B71.
@@ -122,16 +117,16 @@ Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::
   if (code == kTagPcm) {
     f.kind = Format::Kind::kPcm;
     if (f.bits != 8 && f.bits != 16 && f.bits != 24 && f.bits != 32) {
-      throw Error(error_at_byte(path, static_cast<long long>(body + 14),
-                                "unsupported bit depth " + std::to_string(f.bits) +
-                                    " for integer PCM (supported: 8, 16, 24, 32)"));
+      throw Error(error_at_byte(
+          path, static_cast<long long>(body + 14),
+          "unsupported bit depth " + std::to_string(f.bits) + " for integer PCM (supported: 8, 16, 24, 32)"));
     }
   } else if (code == kTagFloat) {
     f.kind = Format::Kind::kFloat;
     if (f.bits != 32 && f.bits != 64) {
-      throw Error(error_at_byte(path, static_cast<long long>(body + 14),
-                                "unsupported bit depth " + std::to_string(f.bits) +
-                                    " for IEEE float (supported: 32, 64)"));
+      throw Error(
+          error_at_byte(path, static_cast<long long>(body + 14),
+                        "unsupported bit depth " + std::to_string(f.bits) + " for IEEE float (supported: 32, 64)"));
     }
   } else {
     std::ostringstream os;
@@ -234,15 +229,21 @@ Audio read_wav(const std::string& path) {
       double v = 0.0;
       if (fmt.kind == Format::Kind::kPcm) {
         switch (fmt.bits) {
-          case 8: v = (static_cast<int>(b[p]) - 128) / 128.0; break;  // 8-bit WAV is unsigned
-          case 16: v = static_cast<std::int16_t>(u16_at(b, p)) / 32768.0; break;
+          case 8:
+            v = (static_cast<int>(b[p]) - 128) / 128.0;
+            break;  // 8-bit WAV is unsigned
+          case 16:
+            v = static_cast<std::int16_t>(u16_at(b, p)) / 32768.0;
+            break;
           case 24: {
             std::int32_t s = static_cast<std::int32_t>(b[p] | (b[p + 1] << 8) | (b[p + 2] << 16));
             if (s & 0x800000) s -= 0x1000000;
             v = s / 8388608.0;
             break;
           }
-          default: v = static_cast<std::int32_t>(u32_at(b, p)) / 2147483648.0; break;
+          default:
+            v = static_cast<std::int32_t>(u32_at(b, p)) / 2147483648.0;
+            break;
         }
       } else {
         if (fmt.bits == 32) {
@@ -279,8 +280,8 @@ Audio read_wav(const std::string& path, int target_rate) {
 
 void write_wav_pcm16(const std::string& path, const Audio& a) {
   if (a.sample_rate <= 0) {
-    throw Error(error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) +
-                                           " is not positive"));
+    throw Error(
+        error_at_line(path, 0, "cannot write WAV: sample rate " + std::to_string(a.sample_rate) + " is not positive"));
   }
   const std::uint64_t data_bytes = 2ull * a.samples.size();
   if (data_bytes + 36 > 0xFFFFFFFFull)
@@ -303,11 +304,11 @@ void write_wav_pcm16(const std::string& path, const Audio& a) {
   put("fmt ");
   put32(16);
   put16(kTagPcm);
-  put16(1);          // channels
+  put16(1);  // channels
   put32(rate);
-  put32(rate * 2);   // byte rate
-  put16(2);          // block align
-  put16(16);         // bits
+  put32(rate * 2);  // byte rate
+  put16(2);         // block align
+  put16(16);        // bits
   put("data");
   put32(static_cast<std::uint32_t>(data_bytes));
   for (float s : a.samples) {

@@ -78,7 +78,8 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
       boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
 
   for (const Transition& t : continuity_analysis(features, run_end, params))
-    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false}, g.graph);
+    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false},
+                    g.graph);
   return g;
 }
 

@@ -13,7 +13,6 @@
 namespace gmg {
 namespace {
 
-
 // The exact distance test of every pair, organised so that it never holds an N x N matrix:
 // the features z = [lambda_pos * p, lambda_vel * v] are projected on their top principal axes
 // (an orthonormal projection), and ||E^T (z_l - z_r)|| <= ||z_l - z_r|| <= d(l, r) bounds the
@@ -39,8 +38,8 @@ class DistanceFilter {
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(cov);
       basis = solver.eigenvectors().rightCols(k);  // eigenvalues ascend: the last k are largest
     }
-    projected_ = (z * basis).cast<float>();      // n x k
-    projected_t_ = projected_.transpose();       // k x n, for the block products
+    projected_ = (z * basis).cast<float>();  // n x k
+    projected_t_ = projected_.transpose();   // k x n, for the block products
     norms_ = projected_.rowwise().squaredNorm();
   }
 
@@ -91,7 +90,6 @@ class DistanceFilter {
   Eigen::MatrixXf projected_, projected_t_;
   Eigen::VectorXf norms_;
 };
-
 
 }  // namespace
 

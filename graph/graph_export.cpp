@@ -13,8 +13,8 @@ namespace {
 // The subgraph of frames [from, to) as a fresh adjacency_list (vertex i = frame from + i).
 GraphStorage subgraph(const MotionGraph& g, int from, int to) {
   if (from < 0 || to > g.frame_count() || from >= to)
-    throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) + " is outside the graph's 0:" +
-                std::to_string(g.frame_count()));
+    throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) +
+                " is outside the graph's 0:" + std::to_string(g.frame_count()));
   GraphStorage sub(static_cast<std::size_t>(to - from));
   for (int f = from; f < to; ++f) sub[static_cast<std::size_t>(f - from)] = g.node(f);
   for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {

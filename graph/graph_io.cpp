@@ -249,8 +249,9 @@ MotionGraph graph_load(const std::string& path) {
   std::uint64_t size = 0;
   std::memcpy(&size, bytes.data() + 12, sizeof size);
   if (size != bytes.size() - kHeader - sizeof(std::uint64_t))
-    throw Error(error_at_byte(path, 12, "graph file is truncated or has trailing bytes (payload " + std::to_string(size) +
-                                            " bytes declared, " + std::to_string(bytes.size() - kHeader - 8) + " present)"));
+    throw Error(error_at_byte(path, 12,
+                              "graph file is truncated or has trailing bytes (payload " + std::to_string(size) +
+                                  " bytes declared, " + std::to_string(bytes.size() - kHeader - 8) + " present)"));
   std::uint64_t hash = 0;
   std::memcpy(&hash, bytes.data() + kHeader + size, sizeof hash);
   if (hash != fnv1a(bytes.data() + kHeader, static_cast<std::size_t>(size)))

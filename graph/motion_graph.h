@@ -34,23 +34,23 @@ struct NodeInfo {
 };
 
 struct EdgeInfo {
-  double weight = 0.0;     // 0 for natural edges, the pose distance d(l, r) for unnatural ones
-  bool natural = false;    // true for i -> i+1 inside a continuous run
+  double weight = 0.0;   // 0 for natural edges, the pose distance d(l, r) for unnatural ones
+  bool natural = false;  // true for i -> i+1 inside a continuous run
 };
 
 using GraphStorage = boost::adjacency_list<boost::vecS, boost::vecS, boost::bidirectionalS, NodeInfo, EdgeInfo>;
 
 struct ClipInfo {
-  std::string name;        // for reports: the motion file it came from
-  int first_frame = 0;     // global index of its first frame
+  std::string name;     // for reports: the motion file it came from
+  int first_frame = 0;  // global index of its first frame
   int frame_count = 0;
 };
 
 struct MotionGraph {
-  Motion motion;                 // every reference clip, concatenated in order (node i = frame i)
-  std::vector<ClipInfo> clips;   // in order, contiguous, covering all frames
-  GraphStorage graph;            // num_vertices == motion.frame_count
-  GraphParams params;            // what it was built with
+  Motion motion;                // every reference clip, concatenated in order (node i = frame i)
+  std::vector<ClipInfo> clips;  // in order, contiguous, covering all frames
+  GraphStorage graph;           // num_vertices == motion.frame_count
+  GraphParams params;           // what it was built with
 
   int frame_count() const { return motion.frame_count; }
   const NodeInfo& node(int frame) const { return graph[static_cast<std::size_t>(frame)]; }
@@ -63,8 +63,8 @@ struct MotionGraph {
 struct ClipEvents {
   std::string name;
   Motion motion;
-  std::vector<int> onset_frames;                             // clip-local frames
-  std::vector<std::pair<int, std::string>> keyword_frames;   // clip-local frame, keyword
+  std::vector<int> onset_frames;                            // clip-local frames
+  std::vector<std::pair<int, std::string>> keyword_frames;  // clip-local frame, keyword
 };
 
 // One unnatural edge before it is added.

@@ -19,7 +19,7 @@ struct GraphParams {
   // spread of natural motion (speed rarely exceeds 4x its median in conversational gesture)
   // yet catches the teleports of a broken capture.
   double break_jump_factor = 8.0;
-  std::string keywords;             // keyword lexicon file; "" = assets/keywords.txt
+  std::string keywords;  // keyword lexicon file; "" = assets/keywords.txt
 };
 
 // Throws gmg::Error naming the first key out of range.

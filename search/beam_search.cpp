@@ -70,8 +70,8 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
   for (int it = 0; it < max_iterations && !beam.empty(); ++it) {
     const bool all_accepted = std::all_of(beam.begin(), beam.end(), accepted);
     // An unterminated path can still become accepted only while it is shorter than max_len.
-    const bool extensible = std::any_of(beam.begin(), beam.end(),
-                                        [&](const Entry& e) { return !e.terminated && e.length < max_len; });
+    const bool extensible =
+        std::any_of(beam.begin(), beam.end(), [&](const Entry& e) { return !e.terminated && e.length < max_len; });
     if (all_accepted || !extensible) break;
     next.clear();
     for (const Entry& e : beam) {

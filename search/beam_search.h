@@ -4,26 +4,26 @@
 #include <string>
 #include <vector>
 
-#include "search/params.h"
 #include "graph/motion_graph.h"
+#include "search/params.h"
 #include "search/segmentation.h"
 
 namespace gmg {
 
 struct BeamRequest {
-  std::vector<int> start_nodes;        // one-node paths the beam starts from (graph frames)
-  int target_length = 1;               // l_sub (>= 1)
+  std::vector<int> start_nodes;  // one-node paths the beam starts from (graph frames)
+  int target_length = 1;         // l_sub (>= 1)
   Termination kind = Termination::Rhythm;
-  std::string keyword;                 // for Keyword termination
+  std::string keyword;  // for Keyword termination
   // Frames whose stopping role is ignored (fallback 2); empty = none. Size 0 or frame_count.
   std::vector<char> ignore_stop;
 };
 
 struct BeamResult {
-  bool accepted = false;               // a terminated path with 0.9 l_sub <= len <= 1.1 l_sub exists
-  std::vector<int> path;               // the accepted path of lowest cost (graph frames), else empty
-  double cost = 0.0;                   // its cost
-  int iterations = 0;                  // beam extensions performed
+  bool accepted = false;  // a terminated path with 0.9 l_sub <= len <= 1.1 l_sub exists
+  std::vector<int> path;  // the accepted path of lowest cost (graph frames), else empty
+  double cost = 0.0;      // its cost
+  int iterations = 0;     // beam extensions performed
 };
 
 // True when frame `f` ends a path for this request (not considering the start node).

@@ -18,7 +18,8 @@ StartNodeIndex initialisation_prepare(const MotionGraph& g, const std::vector<Su
   StartNodeIndex index;
   index.keys = g.key_frames();
   index.occurrences.assign(index.keys.size(), 0);
-  for (std::size_t i = 0; i < index.keys.size(); ++i) index.features.push_back(key_feature(index.keys, i, params.l_feat));
+  for (std::size_t i = 0; i < index.keys.size(); ++i)
+    index.features.push_back(key_feature(index.keys, i, params.l_feat));
   index.test_keys.reserve(subs.size() + 1);
   for (const Subsequence& s : subs) index.test_keys.push_back(s.start);
   if (!subs.empty()) index.test_keys.push_back(subs.back().start + subs.back().length);
@@ -45,8 +46,8 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
   return feature_distance_to(index, key_feature(index.test_keys, k, params.l_feat), m, params);
 }
 
-std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k,
-                                            int round, const SearchParams& params, std::mt19937_64& rng) {
+std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k, int round,
+                                            const SearchParams& params, std::mt19937_64& rng) {
   const std::size_t width = static_cast<std::size_t>(params.l_npaths);
   std::vector<int> out;
   if (params.init == InitMode::Feature && !index.keys.empty()) {
@@ -55,7 +56,8 @@ std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNod
     for (std::size_t m = 0; m < index.keys.size(); ++m) distance[m] = feature_distance_to(index, ft, m, params);
     std::vector<std::size_t> order(index.keys.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
     for (std::size_t r = static_cast<std::size_t>(round) * width; r < order.size() && out.size() < width; ++r)
       out.push_back(index.keys[order[r]]);
   }

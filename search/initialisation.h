@@ -22,10 +22,10 @@ inline std::uint64_t random_below(std::mt19937_64& rng, std::uint64_t n) { retur
 
 // What the ranking needs, computed once per job.
 struct StartNodeIndex {
-  std::vector<int> keys;                       // the graph's key frames, ascending
-  std::vector<std::vector<double>> features;   // key_feature of each graph key
-  std::vector<int> occurrences;                // o_m: accepted paths that started at key m
-  std::vector<int> test_keys;                  // subsequence starts and the end frame, ascending
+  std::vector<int> keys;                      // the graph's key frames, ascending
+  std::vector<std::vector<double>> features;  // key_feature of each graph key
+  std::vector<int> occurrences;               // o_m: accepted paths that started at key m
+  std::vector<int> test_keys;                 // subsequence starts and the end frame, ascending
 };
 
 StartNodeIndex initialisation_prepare(const MotionGraph& g, const std::vector<Subsequence>& subs,
@@ -39,8 +39,8 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
 // [round * l_npaths, (round + 1) * l_npaths) by d_feat (ties in frame order) with init=feature,
 // then random frames (from rng) once key nodes run out, or all random with init=random.
 // Exactly l_npaths nodes.
-std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k,
-                                            int round, const SearchParams& params, std::mt19937_64& rng);
+std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k, int round,
+                                            const SearchParams& params, std::mt19937_64& rng);
 
 // Counts an accepted path that started at `frame` (when it is a key node) for o_m.
 void initialisation_count_use(StartNodeIndex& index, int frame);

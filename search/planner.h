@@ -8,22 +8,22 @@
 #include <vector>
 
 #include "graph/motion_graph.h"
-#include "search/params.h"
 #include "search/beam_search.h"
 #include "search/fallbacks.h"
+#include "search/params.h"
 #include "search/segmentation.h"
 
 namespace gmg {
 
 struct PlannedSegment {
   Subsequence sub;
-  std::vector<int> path;        // graph frames of the chosen path (before resampling to sub.length)
-  bool accepted = false;        // a beam search accepted a path (possibly after fallback 1 or 2)
-  bool failure = false;         // no accepted path and fallbacks off (the path is a held frame)
+  std::vector<int> path;  // graph frames of the chosen path (before resampling to sub.length)
+  bool accepted = false;  // a beam search accepted a path (possibly after fallback 1 or 2)
+  bool failure = false;   // no accepted path and fallbacks off (the path is a held frame)
   Fallback fallback = Fallback::None;
-  int retries = 0;              // beam searches beyond the first
-  double cost = 0.0;            // cost of the accepted path (0 otherwise)
-  bool continued = false;       // the accepted path started from the previous path's successors
+  int retries = 0;         // beam searches beyond the first
+  double cost = 0.0;       // cost of the accepted path (0 otherwise)
+  bool continued = false;  // the accepted path started from the previous path's successors
 };
 
 struct Plan {

@@ -13,10 +13,10 @@ enum class Termination {
 };
 
 struct Subsequence {
-  int start = 0;                          // first test frame
-  int length = 0;                         // target length l_sub in frames (>= 1)
+  int start = 0;   // first test frame
+  int length = 0;  // target length l_sub in frames (>= 1)
   Termination kind = Termination::Rhythm;
-  std::string keyword;                    // the label when kind == Keyword
+  std::string keyword;  // the label when kind == Keyword
 };
 
 // Boundaries are the sorted unique key frames in (0, total) together with 0 and total. A

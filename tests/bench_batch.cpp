@@ -76,7 +76,8 @@ const BenchData& bench_data() {
           const std::string name = stem("ref_", k);
           synth_write(synth_speaker(s), (fs::path(d->pool) / "scratch").string(), name);
           for (const char* ext : {"bvh", "wav", "tsv"})
-            fs::rename(fs::path(d->pool) / "scratch" / (name + "." + ext), fs::path(d->pool) / ext / (name + "." + ext));
+            fs::rename(fs::path(d->pool) / "scratch" / (name + "." + ext),
+                       fs::path(d->pool) / ext / (name + "." + ext));
           std::lock_guard<std::mutex> lock(m);
           ref_total += s.duration_s;
         } else {

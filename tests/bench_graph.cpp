@@ -33,10 +33,11 @@ double peak_rss_mb() {
 
 void print_graph(const char* what, const MotionGraph& g, double secs) {
   const GraphStats s = graph_stats(g);
-  std::printf("%s: %d frames, %d joints: graph built in %.3f s; %ld transitions, %d onset / %d keyword / %d break nodes; "
-              "peak RSS so far %.1f MB\n",
-              what, s.frames, g.motion.joint_count(), secs, s.unnatural_edges, s.onset_nodes, s.keyword_nodes,
-              s.break_nodes, peak_rss_mb());
+  std::printf(
+      "%s: %d frames, %d joints: graph built in %.3f s; %ld transitions, %d onset / %d keyword / %d break nodes; "
+      "peak RSS so far %.1f MB\n",
+      what, s.frames, g.motion.joint_count(), secs, s.unnatural_edges, s.onset_nodes, s.keyword_nodes, s.break_nodes,
+      peak_rss_mb());
 }
 
 // Graph construction alone (features + continuity analysis), from clips already in memory.
@@ -45,7 +46,8 @@ MotionGraph timed_build(const SynthClip& clip, const char* what, const Config& c
   c.name = what;
   c.motion = clip.motion;
   const text::Lexicon lexicon = lexicon_for(cfg.graph);
-  const SpeechEvents ev = speech_events(clip.audio, &clip.words, what, clip.motion.fps, clip.motion.frame_count, cfg.graph, lexicon);
+  const SpeechEvents ev =
+      speech_events(clip.audio, &clip.words, what, clip.motion.fps, clip.motion.frame_count, cfg.graph, lexicon);
   c.onset_frames = ev.onset_frames;
   c.keyword_frames = ev.keyword_frames;
   const auto t0 = std::chrono::steady_clock::now();
@@ -82,7 +84,8 @@ int main() {
   if (!data.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
     const MotionGraph g = graph_build_from_files(
-        {{data + "/beat2_scott/2_scott_0_1_1.bvh", {data + "/beat2_scott/2_scott_0_1_1.wav", data + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+        {{data + "/beat2_scott/2_scott_0_1_1.bvh",
+          {data + "/beat2_scott/2_scott_0_1_1.wav", data + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
         cfg);
     print_graph("2_scott_0_1_1 (including BVH, WAV, TextGrid reading and onset detection)", g, seconds_since(t0));
   } else {
@@ -102,9 +105,10 @@ int main() {
   t0 = std::chrono::steady_clock::now();
   const Reenactment r = reenact_events(g, ev, cfg);
   const double search = seconds_since(t0);
-  std::printf("reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
-              "search + blending %.3f s, total %.3f s (one core)\n",
-              ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
+  std::printf(
+      "reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
+      "search + blending %.3f s, total %.3f s (one core)\n",
+      ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
   std::printf("  fallbacks: %s, failures %d\n", r.report["totals"]["fallbacks"].dump().c_str(), r.plan.failure_count());
   return 0;
 }

@@ -20,9 +20,9 @@ TempDir::TempDir() {
   static std::atomic<int> counter{0};
   std::random_device rd;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    auto candidate = std::filesystem::temp_directory_path() /
-                     ("gmg_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) +
-                      "_" + std::to_string(rd() % 100000));
+    auto candidate =
+        std::filesystem::temp_directory_path() / ("gmg_test_" + std::to_string(::getpid()) + "_" +
+                                                  std::to_string(counter++) + "_" + std::to_string(rd() % 100000));
     if (std::filesystem::create_directory(candidate)) {
       path_ = candidate;
       return;

@@ -29,8 +29,8 @@ void write_text(const std::string& path, const std::string& text);
 }  // namespace gmg::testing
 
 // Skips the current test when ../shared/data is absent.
-#define GMG_REQUIRE_SHARED_DATA()                                                   \
-  do {                                                                              \
-    if (gmg::testing::shared_data_dir().empty())                                    \
-      GTEST_SKIP() << "../shared/data is absent: skipping the real-data test";      \
+#define GMG_REQUIRE_SHARED_DATA()                                              \
+  do {                                                                         \
+    if (gmg::testing::shared_data_dir().empty())                               \
+      GTEST_SKIP() << "../shared/data is absent: skipping the real-data test"; \
   } while (0)

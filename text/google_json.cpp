@@ -38,8 +38,8 @@ double json_time(const json& v, const std::string& path, const std::string& wher
       std::string_view s = trim(x.get_ref<const std::string&>());
       if (allow_suffix && !s.empty() && (s.back() == 's' || s.back() == 'S')) s.remove_suffix(1);
       if (auto d = parse_number(s)) return *d;
-      json_fail(path, w, "bad time " + quote_field(x.get_ref<const std::string&>()) +
-                             " (expected seconds such as \"1.500s\")");
+      json_fail(path, w,
+                "bad time " + quote_field(x.get_ref<const std::string&>()) + " (expected seconds such as \"1.500s\")");
     }
     json_fail(path, w, "bad time " + x.dump() + " (expected a string, number or {seconds, nanos})");
   };
@@ -76,8 +76,9 @@ std::vector<Word> read_google_json(const std::string& path) {
     results = &doc["response"]["results"];
     base = "response.results";
   } else {
-    json_fail(path, "", "expected a Google speech JSON: an array of results or an object with "
-                        "\"results\"");
+    json_fail(path, "",
+              "expected a Google speech JSON: an array of results or an object with "
+              "\"results\"");
   }
   if (!results->is_array()) json_fail(path, base, "expected an array of results");
 
@@ -113,8 +114,9 @@ std::vector<Word> read_google_json(const std::string& path) {
       out.text = std::string(trim(word->get_ref<const std::string&>()));
       if (out.start < 0) json_fail(path, wh, "negative start time " + format_seconds(out.start));
       if (out.end < out.start)
-        json_fail(path, wh, "word " + quote_field(out.text) + " ends (" + format_seconds(out.end) +
-                                " s) before it starts (" + format_seconds(out.start) + " s)");
+        json_fail(path, wh,
+                  "word " + quote_field(out.text) + " ends (" + format_seconds(out.end) + " s) before it starts (" +
+                      format_seconds(out.start) + " s)");
       if (out.text.empty()) continue;
       words.push_back(std::move(out));
     }

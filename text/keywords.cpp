@@ -65,19 +65,39 @@ std::vector<Unit> classify(const std::string& w) {
     std::string seq = w.substr(i, len);
     i += len;
     switch (cp) {
-      case 0x2018: case 0x2019: case 0x02BC:  // typographic apostrophes
+      case 0x2018:
+      case 0x2019:
+      case 0x02BC:  // typographic apostrophes
         units.push_back({Kind::Joiner, "'"});
         break;
-      case 0x2010: case 0x2011:  // Unicode hyphens
+      case 0x2010:
+      case 0x2011:  // Unicode hyphens
         units.push_back({Kind::Joiner, "-"});
         break;
-      case 0x00A0: case 0x2002: case 0x2003: case 0x2009: case 0x200A: case 0x202F:
+      case 0x00A0:
+      case 0x2002:
+      case 0x2003:
+      case 0x2009:
+      case 0x200A:
+      case 0x202F:
       case 0x3000:  // spaces
         units.push_back({Kind::Space, ""});
         break;
-      case 0x00AB: case 0x00BB: case 0x201A: case 0x201C: case 0x201D: case 0x201E:
-      case 0x2012: case 0x2013: case 0x2014: case 0x2015: case 0x2026: case 0x00BF:
-      case 0x00A1: case 0x200B: case 0xFEFF:  // quotes, dashes, ellipsis, inverted marks, ZW
+      case 0x00AB:
+      case 0x00BB:
+      case 0x201A:
+      case 0x201C:
+      case 0x201D:
+      case 0x201E:
+      case 0x2012:
+      case 0x2013:
+      case 0x2014:
+      case 0x2015:
+      case 0x2026:
+      case 0x00BF:
+      case 0x00A1:
+      case 0x200B:
+      case 0xFEFF:  // quotes, dashes, ellipsis, inverted marks, ZW
         units.push_back({Kind::Punct, ""});
         break;
       default:
@@ -165,9 +185,7 @@ bool Lexicon::contains(const std::string& phrase) const {
   return std::find(phrases.begin(), phrases.end(), tokens) != phrases.end();
 }
 
-Lexicon load_lexicon(const std::string& path) {
-  return parse_lexicon(detail::read_text_file(path), path);
-}
+Lexicon load_lexicon(const std::string& path) { return parse_lexicon(detail::read_text_file(path), path); }
 
 Lexicon parse_lexicon(const std::string& text, const std::string& path) {
   const std::vector<std::string> lines = split_lines(text);
@@ -180,8 +198,7 @@ Lexicon parse_lexicon(const std::string& text, const std::string& path) {
     std::vector<std::string> tokens = normalize_tokens(line);
     if (tokens.empty())
       throw Error(error_at_line(path, static_cast<long>(i + 1),
-                                "keyword \"" + std::string(trim(line)) +
-                                    "\" has no letters or digits"));
+                                "keyword \"" + std::string(trim(line)) + "\" has no letters or digits"));
     if (seen.insert(tokens).second) lex.phrases.push_back(std::move(tokens));
   }
   if (lex.empty()) throw Error(path + ": the keyword lexicon holds no keywords");
@@ -207,8 +224,7 @@ std::vector<KeywordEvent> detect_keywords(const std::vector<Word>& words, const 
   for (const auto& p : lexicon.phrases)
     if (!p.empty()) by_first[p.front()].push_back(&p);
   for (auto& [first, list] : by_first)
-    std::stable_sort(list.begin(), list.end(),
-                     [](const auto* a, const auto* b) { return a->size() > b->size(); });
+    std::stable_sort(list.begin(), list.end(), [](const auto* a, const auto* b) { return a->size() > b->size(); });
 
   std::vector<KeywordEvent> events;
   std::size_t prev_end = static_cast<std::size_t>(-1);  // token index right after the last match
@@ -232,8 +248,7 @@ std::vector<KeywordEvent> detect_keywords(const std::vector<Word>& words, const 
       continue;
     }
     std::string keyword = join(*match);
-    if (!(prev_end == i && prev_keyword == keyword))
-      events.push_back({words[tokens[i].word].start, keyword});
+    if (!(prev_end == i && prev_keyword == keyword)) events.push_back({words[tokens[i].word].start, keyword});
     i += match->size();
     prev_end = i;
     prev_keyword = std::move(keyword);
@@ -241,8 +256,7 @@ std::vector<KeywordEvent> detect_keywords(const std::vector<Word>& words, const 
   return events;
 }
 
-std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, double fps,
-                                         int num_frames) {
+std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, double fps, int num_frames) {
   if (!(fps > 0) || !std::isfinite(fps))
     throw Error("keyword_frames: the frame rate must be positive, got " + std::to_string(fps));
   std::vector<KeywordFrame> frames;

@@ -82,7 +82,6 @@ struct KeywordFrame {
 // may outlast the motion). When several events fall in the same frame only the first (in the
 // order given) is kept. The result is sorted by frame. num_frames <= 0 gives no frames;
 // a non-positive or non-finite fps is a gmg::Error.
-std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, double fps,
-                                         int num_frames);
+std::vector<KeywordFrame> keyword_frames(const std::vector<KeywordEvent>& ev, double fps, int num_frames);
 
 }  // namespace gmg::text

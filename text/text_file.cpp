@@ -28,8 +28,7 @@ void append_utf8(std::string& out, std::uint32_t cp) {
   }
 }
 
-std::string decode_utf16(const std::string& bytes, std::size_t begin, bool little_endian,
-                         const std::string& path) {
+std::string decode_utf16(const std::string& bytes, std::size_t begin, bool little_endian, const std::string& path) {
   if ((bytes.size() - begin) % 2 != 0)
     throw Error(path + ": UTF-16 text with an odd number of bytes (truncated file?)");
   auto unit = [&](std::size_t i) -> std::uint32_t {
@@ -65,15 +64,11 @@ std::string decode_utf16(const std::string& bytes, std::size_t begin, bool littl
 std::string decode_to_utf8(const std::string& bytes, const std::string& path) {
   auto byte = [&](std::size_t i) { return static_cast<unsigned char>(bytes[i]); };
   if (has_utf8_bom(bytes)) return std::string(strip_utf8_bom(bytes));
-  if (bytes.size() >= 2 && byte(0) == 0xFF && byte(1) == 0xFE)
-    return decode_utf16(bytes, 2, true, path);
-  if (bytes.size() >= 2 && byte(0) == 0xFE && byte(1) == 0xFF)
-    return decode_utf16(bytes, 2, false, path);
+  if (bytes.size() >= 2 && byte(0) == 0xFF && byte(1) == 0xFE) return decode_utf16(bytes, 2, true, path);
+  if (bytes.size() >= 2 && byte(0) == 0xFE && byte(1) == 0xFF) return decode_utf16(bytes, 2, false, path);
   // UTF-16 without a byte-order mark: the first character is ASCII, so one byte is NUL.
-  if (bytes.size() >= 2 && byte(0) != 0 && byte(0) < 0x80 && byte(1) == 0)
-    return decode_utf16(bytes, 0, true, path);
-  if (bytes.size() >= 2 && byte(0) == 0 && byte(1) != 0 && byte(1) < 0x80)
-    return decode_utf16(bytes, 0, false, path);
+  if (bytes.size() >= 2 && byte(0) != 0 && byte(0) < 0x80 && byte(1) == 0) return decode_utf16(bytes, 0, true, path);
+  if (bytes.size() >= 2 && byte(0) == 0 && byte(1) != 0 && byte(1) < 0x80) return decode_utf16(bytes, 0, false, path);
   return bytes;
 }
 

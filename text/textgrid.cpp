@@ -47,8 +47,7 @@ class TextGridLexer {
       t.kind = Token::String;
       ++pos_;
       for (;;) {
-        if (pos_ >= s_.size())
-          throw Error(error_at_line(path_, t.line, "unterminated text (missing closing quote)"));
+        if (pos_ >= s_.size()) throw Error(error_at_line(path_, t.line, "unterminated text (missing closing quote)"));
         char d = s_[pos_++];
         if (d == '"') {
           if (pos_ < s_.size() && s_[pos_] == '"') {  // "" is a literal quote
@@ -87,8 +86,7 @@ class TextGridLexer {
       }
     }
     std::size_t start = pos_;
-    while (pos_ < s_.size() && !is_ascii_space(s_[pos_]) && s_[pos_] != '"' &&
-           !(pos_ > start && s_[pos_] == '[')) {
+    while (pos_ < s_.size() && !is_ascii_space(s_[pos_]) && s_[pos_] != '"' && !(pos_ > start && s_[pos_] == '[')) {
       ++pos_;
     }
     t.text = s_.substr(start, pos_ - start);
@@ -142,14 +140,12 @@ class TextGridParser {
     while (t.kind == Token::Label) t = raw();
     if (t.kind != Token::String || t.text != "ooTextFile")
       throw Error(error_at_line(path_, t.kind == Token::End ? 1 : t.line,
-                               "not a Praat text TextGrid (File type = \"ooTextFile\" missing)"));
+                                "not a Praat text TextGrid (File type = \"ooTextFile\" missing)"));
     t = raw();
     while (t.kind == Token::Label) t = raw();
-    if (t.kind != Token::String)
-      throw Error(error_at_line(path_, last_line(t), "Object class = \"TextGrid\" missing"));
+    if (t.kind != Token::String) throw Error(error_at_line(path_, last_line(t), "Object class = \"TextGrid\" missing"));
     if (t.text.rfind("TextGrid", 0) != 0)
-      throw Error(error_at_line(path_, t.line,
-                                "object class is " + quote_field(t.text) + ", not a TextGrid"));
+      throw Error(error_at_line(path_, t.line, "object class is " + quote_field(t.text) + ", not a TextGrid"));
     // Long format: labels (`xmin = 0`) from here on; short format: bare values.
     Token after = raw();
     long_format_ = after.kind == Token::Label;
@@ -198,8 +194,8 @@ class TextGridParser {
           if (mark.kind != Token::String) throw unexpected(mark, "the mark of " + where);
         }
       } else {
-        throw Error(error_at_line(path_, cls.line, "unknown tier class " + quote_field(tier.cls) +
-                                                       " (expected IntervalTier or TextTier)"));
+        throw Error(error_at_line(
+            path_, cls.line, "unknown tier class " + quote_field(tier.cls) + " (expected IntervalTier or TextTier)"));
       }
       tiers.push_back(std::move(tier));
     }
@@ -224,13 +220,13 @@ class TextGridParser {
     Token t = raw();
     while (t.kind == Token::Label && long_format_) t = raw();
     if (t.kind == Token::End)
-      throw Error(error_at_line(path_, last_line_,
-                                "unexpected end of file (truncated TextGrid?) while reading " + what));
+      throw Error(
+          error_at_line(path_, last_line_, "unexpected end of file (truncated TextGrid?) while reading " + what));
     if (t.kind == Token::Bad || t.kind == Token::Label) {
       const bool nonfinite = detail::names_non_finite(t.text);
-      throw Error(error_at_line(path_, t.line, "malformed value " + quote_field(t.text) + " for " + what +
-                                                   (nonfinite ? " (not a finite number)"
-                                                              : " (not a number)")));
+      throw Error(error_at_line(path_, t.line,
+                                "malformed value " + quote_field(t.text) + " for " + what +
+                                    (nonfinite ? " (not a finite number)" : " (not a number)")));
     }
     return t;
   }
@@ -292,23 +288,22 @@ std::vector<Word> read_textgrid(const std::string& path) {
   if (!chosen) {
     std::string list;
     for (const Tier& t : tiers) list += (list.empty() ? "" : ", ") + quote_field(t.name);
-    throw Error(path + ": no tier named \"words\" (tiers found: " +
-                (list.empty() ? std::string("none") : list) + ")");
+    throw Error(path + ": no tier named \"words\" (tiers found: " + (list.empty() ? std::string("none") : list) + ")");
   }
   if (chosen->cls != "IntervalTier")
-    throw Error(error_at_line(path, chosen->line, "the words tier " + quote_field(chosen->name) +
-                                                      " is a " + chosen->cls + ", not an IntervalTier"));
+    throw Error(error_at_line(
+        path, chosen->line,
+        "the words tier " + quote_field(chosen->name) + " is a " + chosen->cls + ", not an IntervalTier"));
 
   std::vector<Word> words;
   for (const Interval& iv : chosen->intervals) {
     if (iv.xmax < iv.xmin)
-      throw Error(error_at_line(path, iv.line, "interval " + quote_field(iv.text) + " ends (" +
-                                                   format_seconds(iv.xmax) + " s) before it starts (" +
-                                                   format_seconds(iv.xmin) + " s)"));
+      throw Error(error_at_line(path, iv.line,
+                                "interval " + quote_field(iv.text) + " ends (" + format_seconds(iv.xmax) +
+                                    " s) before it starts (" + format_seconds(iv.xmin) + " s)"));
     if (iv.xmin < 0)
-      throw Error(error_at_line(path, iv.line, "interval " + quote_field(iv.text) +
-                                                   " starts at a negative time " +
-                                                   format_seconds(iv.xmin)));
+      throw Error(error_at_line(
+          path, iv.line, "interval " + quote_field(iv.text) + " starts at a negative time " + format_seconds(iv.xmin)));
     std::string_view t = trim(iv.text);
     if (t.empty()) continue;  // silence
     words.push_back(Word{iv.xmin, iv.xmax, std::string(t)});

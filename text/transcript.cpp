@@ -22,8 +22,7 @@ std::string format_seconds(double t) {
 }
 
 void sort_words(std::vector<Word>& words) {
-  std::stable_sort(words.begin(), words.end(),
-                   [](const Word& a, const Word& b) { return a.start < b.start; });
+  std::stable_sort(words.begin(), words.end(), [](const Word& a, const Word& b) { return a.start < b.start; });
 }
 
 std::string quote_field(std::string_view s) {
@@ -49,16 +48,19 @@ TranscriptFormat parse_transcript_format(const std::string& name) {
   if (n == "tsv") return TranscriptFormat::Tsv;
   if (n == "textgrid") return TranscriptFormat::TextGrid;
   if (n == "json") return TranscriptFormat::Json;
-  throw Error("unknown transcript format " + quote_field(name) +
-              " (expected one of: auto, tsv, textgrid, json)");
+  throw Error("unknown transcript format " + quote_field(name) + " (expected one of: auto, tsv, textgrid, json)");
 }
 
 std::string transcript_format_name(TranscriptFormat format) {
   switch (format) {
-    case TranscriptFormat::Auto: return "auto";
-    case TranscriptFormat::Tsv: return "tsv";
-    case TranscriptFormat::TextGrid: return "textgrid";
-    case TranscriptFormat::Json: return "json";
+    case TranscriptFormat::Auto:
+      return "auto";
+    case TranscriptFormat::Tsv:
+      return "tsv";
+    case TranscriptFormat::TextGrid:
+      return "textgrid";
+    case TranscriptFormat::Json:
+      return "json";
   }
   return "auto";
 }
@@ -79,21 +81,25 @@ std::vector<Word> read_transcript(const std::string& path, TranscriptFormat form
     }
   }
   switch (format) {
-    case TranscriptFormat::Tsv: return read_tsv(path);
-    case TranscriptFormat::TextGrid: return read_textgrid(path);
-    case TranscriptFormat::Json: return read_google_json(path);
-    case TranscriptFormat::Auto: break;
+    case TranscriptFormat::Tsv:
+      return read_tsv(path);
+    case TranscriptFormat::TextGrid:
+      return read_textgrid(path);
+    case TranscriptFormat::Json:
+      return read_google_json(path);
+    case TranscriptFormat::Auto:
+      break;
   }
   throw Error(path + ": unknown transcript format");
 }
 
-void check_transcript_fits(const std::vector<Word>& words, double duration_s,
-                           const std::string& path, double tolerance_s) {
+void check_transcript_fits(const std::vector<Word>& words, double duration_s, const std::string& path,
+                           double tolerance_s) {
   for (const Word& w : words) {
     if (w.end > duration_s + tolerance_s)
-      throw Error(path + ": the transcript runs past the end of the audio: word " + quote_field(w.text) +
-                  " ends at " + format_seconds(w.end) + " s but the audio lasts " +
-                  format_seconds(duration_s) + " s (a transcript of another recording?)");
+      throw Error(path + ": the transcript runs past the end of the audio: word " + quote_field(w.text) + " ends at " +
+                  format_seconds(w.end) + " s but the audio lasts " + format_seconds(duration_s) +
+                  " s (a transcript of another recording?)");
   }
 }
 

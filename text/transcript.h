@@ -38,8 +38,7 @@ std::string transcript_format_name(TranscriptFormat format);
 // Reads a transcript. Auto picks the reader by extension (ASCII case-insensitive):
 // .tsv/.txt -> TSV, .textgrid -> TextGrid, .json -> JSON; any other extension is a gmg::Error
 // that suggests --transcript-format.
-std::vector<Word> read_transcript(const std::string& path,
-                                  TranscriptFormat format = TranscriptFormat::Auto);
+std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format = TranscriptFormat::Auto);
 
 // GENEA TSV: one word a line, `start<TAB>end<TAB>word`, no header. Everything after the second
 // tab is the word (it may contain spaces and tabs; it is trimmed). A line without any tab is
@@ -73,7 +72,7 @@ std::vector<Word> read_google_json(const std::string& path);
 
 // Throws gmg::Error naming `path` when some word ends after duration_s + tolerance_s, i.e. the
 // transcript runs past the end of the audio (usually a transcript of another recording).
-void check_transcript_fits(const std::vector<Word>& words, double duration_s,
-                           const std::string& path, double tolerance_s = 0.05);
+void check_transcript_fits(const std::vector<Word>& words, double duration_s, const std::string& path,
+                           double tolerance_s = 0.05);
 
 }  // namespace gmg::text

@@ -20,16 +20,12 @@ namespace {
 double tsv_time(std::string_view field, const char* which, const std::string& path, long line) {
   std::string_view f = trim(field);
   if (auto v = parse_number(f)) {
-    if (*v < 0)
-      throw Error(error_at_line(path, line, std::string("negative ") + which + " time " +
-                                                std::string(f)));
+    if (*v < 0) throw Error(error_at_line(path, line, std::string("negative ") + which + " time " + std::string(f)));
     return *v;
   }
   if (detail::names_non_finite(f))
-    throw Error(error_at_line(path, line, std::string(which) + " time " + quote_field(f) +
-                                              " is not a finite number"));
-  throw Error(error_at_line(path, line, std::string(which) + " time " + quote_field(f) +
-                                            " is not a number"));
+    throw Error(error_at_line(path, line, std::string(which) + " time " + quote_field(f) + " is not a finite number"));
+  throw Error(error_at_line(path, line, std::string(which) + " time " + quote_field(f) + " is not a number"));
 }
 
 // Splits a line without tabs on its first two runs of blanks: start, end, rest.
@@ -70,17 +66,17 @@ std::vector<Word> read_tsv(const std::string& path) {
       }
     }
     if (fields.size() < 3)
-      throw Error(error_at_line(path, line, "expected start<TAB>end<TAB>word, found " +
-                                                std::to_string(fields.size()) + " field(s): " +
-                                                quote_field(trim(l))));
+      throw Error(error_at_line(path, line,
+                                "expected start<TAB>end<TAB>word, found " + std::to_string(fields.size()) +
+                                    " field(s): " + quote_field(trim(l))));
     Word w;
     w.start = tsv_time(fields[0], "start", path, line);
     w.end = tsv_time(fields[1], "end", path, line);
     w.text = std::string(trim(fields[2]));
     if (w.end < w.start)
-      throw Error(error_at_line(path, line, "word " + quote_field(w.text) + " ends (" +
-                                                format_seconds(w.end) + " s) before it starts (" +
-                                                format_seconds(w.start) + " s)"));
+      throw Error(error_at_line(path, line,
+                                "word " + quote_field(w.text) + " ends (" + format_seconds(w.end) +
+                                    " s) before it starts (" + format_seconds(w.start) + " s)"));
     if (w.text.empty()) continue;  // silence
     words.push_back(std::move(w));
   }

@@ -11,8 +11,9 @@
 namespace gmg {
 
 int cli_main(int argc, char** argv) {
-  CLI::App app{"gmg: gesture motion graphs - reenact a speaker's gestures for new speech.\n"
-               "Build a graph from reference clips (BVH + WAV + optional transcript), then reenact new speech."};
+  CLI::App app{
+      "gmg: gesture motion graphs - reenact a speaker's gestures for new speech.\n"
+      "Build a graph from reference clips (BVH + WAV + optional transcript), then reenact new speech."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "gmg 0.1.0");
   int exit_code = 0;  // set by subcommands with their own codes (batch)

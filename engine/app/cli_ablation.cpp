@@ -34,19 +34,22 @@ void run_ablation(AblationArgs& a) {
 }  // namespace
 
 void add_ablation_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("ablation",
-                                 "the paper's Table 2 with baselines: time folds of one recording, seven setups");
+  auto* cmd =
+      app.add_subcommand("ablation", "the paper's Table 2 with baselines: time folds of one recording, seven setups");
   auto a = std::make_shared<AblationArgs>();
   cmd->add_option("--motion", a->motion, "recording's BVH")->required();
   cmd->add_option("--audio", a->audio, "its WAV")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (optional)");
   cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
       ->capture_default_str();
-  cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
-  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")->capture_default_str();
+  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
+      ->capture_default_str();
   cmd->add_option("--csv", a->csv, "also write the table as CSV");
   a->config.add(cmd, false);
   cmd->callback([a] { run_ablation(*a); });

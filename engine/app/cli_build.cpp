@@ -34,9 +34,8 @@ void run_build(const BuildArgs& a) {
   const MotionGraph g = graph_build_from_files(clips, cfg);
   graph_save(a.output, g);
   const GraphStats s = graph_stats(g);
-  std::cout << "wrote " << a.output << ": " << s.frames << " frames, " << s.onset_nodes << " onset, "
-            << s.keyword_nodes << " keyword, " << s.break_nodes << " break nodes, " << s.unnatural_edges
-            << " transitions\n";
+  std::cout << "wrote " << a.output << ": " << s.frames << " frames, " << s.onset_nodes << " onset, " << s.keyword_nodes
+            << " keyword, " << s.break_nodes << " break nodes, " << s.unnatural_edges << " transitions\n";
 }
 
 }  // namespace

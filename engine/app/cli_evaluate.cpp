@@ -42,7 +42,8 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
-  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")->capture_default_str();
+  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
+      ->capture_default_str();
   cmd->add_option("--plot", in.plot, "draw speeds, onset strength, onsets and junctions over time (.png or .svg)");
   cmd->add_flag("--json", a->json, "print one JSON object on standard output");
   cmd->add_option("-o,--output", a->output, "also write the JSON to this file");

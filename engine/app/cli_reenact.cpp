@@ -34,8 +34,8 @@ void run_reenact(const ReenactArgs& a) {
         {{a.ref_motion, {a.ref_audio, transcript_or_none(a.ref_transcript), text::TranscriptFormat::Auto}}}, cfg);
     graph_name = a.ref_motion;
   }
-  const Reenactment r = reenact(
-      g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format)}, cfg, graph_name);
+  const Reenactment r =
+      reenact(g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format)}, cfg, graph_name);
   bvh_write(a.output, r.motion);
   if (!a.report.empty()) write_json_file(a.report, r.report);
   const auto& t = r.report["totals"];

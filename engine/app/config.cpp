@@ -54,7 +54,7 @@ struct Accessor {
 };
 
 template <typename T>
-Accessor number_key(const char* name, const char* help, T Config::*group, double (T::*field)) {
+Accessor number_key(const char* name, const char* help, T Config::*group, double(T::*field)) {
   return {{name, help},
           [=](Config& c, const std::string& v) { (c.*group).*field = parse_double(name, v); },
           [=](const Config& c) { return format_double((c.*group).*field); }};
@@ -64,7 +64,8 @@ Accessor int_key(const char* name, const char* help, T Config::*group, int(T::*f
   return {{name, help},
           [=](Config& c, const std::string& v) {
             const long long x = parse_int(name, v);
-            if (x < -1000000000LL || x > 1000000000LL) throw Error(std::string("config key '") + name + "': out of range");
+            if (x < -1000000000LL || x > 1000000000LL)
+              throw Error(std::string("config key '") + name + "': out of range");
             (c.*group).*field = static_cast<int>(x);
           },
           [=](const Config& c) { return std::to_string((c.*group).*field); },
@@ -97,17 +98,24 @@ Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*fi
 
 const std::vector<Accessor>& accessors() {
   static const std::vector<Accessor> table = {
-      number_key("lambda_pos", "weight of joint positions in the pose distance", &Config::graph, &GraphParams::lambda_pos),
-      number_key("lambda_vel", "weight of joint velocities in the pose distance", &Config::graph, &GraphParams::lambda_vel),
+      number_key("lambda_pos", "weight of joint positions in the pose distance", &Config::graph,
+                 &GraphParams::lambda_pos),
+      number_key("lambda_vel", "weight of joint velocities in the pose distance", &Config::graph,
+                 &GraphParams::lambda_vel),
       int_key("l_cn", "frames after l averaged for l's continuity threshold", &Config::graph, &GraphParams::l_cn),
       int_key("l_pn", "pruning neighbourhood in frames (weak pruning: 1)", &Config::graph, &GraphParams::l_pn),
-      bool_key("exclude_near", "never add a transition to a frame within l_pn (false: paper-literal)", &Config::graph, &GraphParams::exclude_near),
-      number_key("min_onset_strength", "raw onset strength a peak needs (weak detection: 0)", &Config::graph, &GraphParams::min_onset_strength),
-      number_key("break_jump_factor", "capture jump = distance to next frame above this times the median", &Config::graph, &GraphParams::break_jump_factor),
-      string_key("keywords", "keyword lexicon file (empty: assets/keywords.txt)", &Config::graph, &GraphParams::keywords),
+      bool_key("exclude_near", "never add a transition to a frame within l_pn (false: paper-literal)", &Config::graph,
+               &GraphParams::exclude_near),
+      number_key("min_onset_strength", "raw onset strength a peak needs (weak detection: 0)", &Config::graph,
+                 &GraphParams::min_onset_strength),
+      number_key("break_jump_factor", "capture jump = distance to next frame above this times the median",
+                 &Config::graph, &GraphParams::break_jump_factor),
+      string_key("keywords", "keyword lexicon file (empty: assets/keywords.txt)", &Config::graph,
+                 &GraphParams::keywords),
       int_key("l_npaths", "beam width and number of start nodes", &Config::search, &SearchParams::l_npaths),
       number_key("lambda_w", "weight of edge weights in the path cost", &Config::search, &SearchParams::lambda_w),
-      number_key("lambda_len", "weight of the length mismatch in the path cost", &Config::search, &SearchParams::lambda_len),
+      number_key("lambda_len", "weight of the length mismatch in the path cost", &Config::search,
+                 &SearchParams::lambda_len),
       int_key("l_feat", "key-node feature length", &Config::search, &SearchParams::l_feat),
       number_key("lambda_full", "weight of the whole feature distance", &Config::search, &SearchParams::lambda_full),
       number_key("lambda_first", "weight of the first-length ratio", &Config::search, &SearchParams::lambda_first),
@@ -123,13 +131,17 @@ const std::vector<Accessor>& accessors() {
          return s;
        }},
       int_key("retries", "retries with new start nodes before a fallback", &Config::search, &SearchParams::retries),
-      number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search, &SearchParams::max_length_factor),
-      bool_key("fallbacks", "use the termination fallbacks (false: count failures)", &Config::search, &SearchParams::fallbacks),
+      number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search,
+                 &SearchParams::max_length_factor),
+      bool_key("fallbacks", "use the termination fallbacks (false: count failures)", &Config::search,
+               &SearchParams::fallbacks),
       enum_key("init", "start nodes: feature or random (weak initialisation)", &Config::search, &SearchParams::init,
                kInitModeNames),
-      int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search, &SearchParams::ignore_rounds),
+      int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search,
+              &SearchParams::ignore_rounds),
       int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
-      enum_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve, kBlendCurveNames),
+      enum_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve,
+               kBlendCurveNames),
       enum_key("blend_mode", "offset (spread the junction's excess jump) or crossfade (SPEC's held-frame cross-fade)",
                &Config::blend, &BlendParams::mode, kBlendModeNames),
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
@@ -139,7 +151,8 @@ const std::vector<Accessor>& accessors() {
          for (const std::string& j : c.cleanup.lock_joints) s += (s.empty() ? "" : ",") + j;
          return s;
        }},
-      int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup, &CleanupParams::smooth_window),
+      int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup,
+              &CleanupParams::smooth_window),
       int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order),
       {{"seed", "seed of every random choice"},
        [](Config& c, const std::string& v) {

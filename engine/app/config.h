@@ -23,12 +23,12 @@ struct Config {
   SearchParams search;
   BlendParams blend;
   CleanupParams cleanup;
-  std::uint64_t seed = 20231009;    // default seed (the paper's conference date)
+  std::uint64_t seed = 20231009;  // default seed (the paper's conference date)
 };
 
 struct ConfigKey {
-  std::string name;   // e.g. "l_pn"
-  std::string help;   // one line
+  std::string name;  // e.g. "l_pn"
+  std::string help;  // one line
 };
 
 // All keys, in a stable order.

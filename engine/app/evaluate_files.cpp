@@ -22,15 +22,16 @@ struct ReportFacts {
 
 ReportFacts read_report(const std::string& path, double fps) {
   const nlohmann::json rep = read_json_file(path);
-  if (!rep.is_object() || !rep.contains("totals") || !rep["totals"].is_object() || !rep["totals"].contains("failures") ||
-      !rep.contains("subsequences") || !rep["subsequences"].is_array())
+  if (!rep.is_object() || !rep.contains("totals") || !rep["totals"].is_object() ||
+      !rep["totals"].contains("failures") || !rep.contains("subsequences") || !rep["subsequences"].is_array())
     throw Error(path + ": not a gmg reenactment report (no totals.failures or subsequences)");
   ReportFacts f;
   f.totals = rep["totals"];
   int previous = -2;
   for (const nlohmann::json& s : rep["subsequences"]) {
     if (!s.is_object() || !s.contains("graph_ranges") || !s.contains("start_frame") || !s.contains("target_length") ||
-        !s["graph_ranges"].is_array() || !s["start_frame"].is_number_integer() || !s["target_length"].is_number_integer())
+        !s["graph_ranges"].is_array() || !s["start_frame"].is_number_integer() ||
+        !s["target_length"].is_number_integer())
       throw Error(path + ": a subsequence lacks start_frame, target_length or graph_ranges");
     const int start = s["start_frame"].get<int>(), length = s["target_length"].get<int>();
     std::vector<int> frames;
@@ -58,7 +59,8 @@ std::vector<Motion> read_reference(const std::string& path) {
   std::vector<Motion> clips;
   if (ends_with_ci(path, ".gmg")) {
     const MotionGraph g = graph_load(path);
-    for (const ClipInfo& c : g.clips) clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
+    for (const ClipInfo& c : g.clips)
+      clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
   } else {
     clips.push_back(bvh_read(path));
   }
@@ -76,8 +78,8 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
     if (in.trim && truth.frame_count != generated.frame_count) {
       Motion& longer = truth.frame_count > generated.frame_count ? truth : generated;
       const int keep = std::min(truth.frame_count, generated.frame_count);
-      result.warnings.push_back("--trim: cut " + std::to_string(longer.frame_count - keep) + " frame(s) off the end of " +
-                                (&longer == &truth ? in.truth : in.generated) + " (" +
+      result.warnings.push_back("--trim: cut " + std::to_string(longer.frame_count - keep) +
+                                " frame(s) off the end of " + (&longer == &truth ? in.truth : in.generated) + " (" +
                                 std::to_string(longer.frame_count) + " -> " + std::to_string(keep) + ")");
       longer = motion_slice(longer, 0, keep);
     }

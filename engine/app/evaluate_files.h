@@ -12,13 +12,13 @@
 namespace gmg {
 
 struct EvaluateInputs {
-  std::string generated;   // BVH (required)
-  std::string truth;       // BVH, same skeleton and frame count; "" = skip the metrics needing it
-  std::string audio;       // the speech (WAV); "" = skip the sync metrics
-  std::string report;      // reenactment report JSON; "" = skip failures, fallbacks and transitions
-  std::string reference;   // the reference capture: a BVH or a graph (.gmg); "" = none
-  bool trim = false;       // cut the longer of generated and truth to the shorter (a warning says by how much)
-  std::string plot;        // write a picture (.png or .svg); "" = none
+  std::string generated;  // BVH (required)
+  std::string truth;      // BVH, same skeleton and frame count; "" = skip the metrics needing it
+  std::string audio;      // the speech (WAV); "" = skip the sync metrics
+  std::string report;     // reenactment report JSON; "" = skip failures, fallbacks and transitions
+  std::string reference;  // the reference capture: a BVH or a graph (.gmg); "" = none
+  bool trim = false;      // cut the longer of generated and truth to the shorter (a warning says by how much)
+  std::string plot;       // write a picture (.png or .svg); "" = none
 };
 
 struct EvaluateResult {

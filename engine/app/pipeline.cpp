@@ -10,9 +10,9 @@
 #include "audio/wav.h"
 #include "engine/assemble/blend.h"
 #include "engine/assemble/resample.h"
+#include "engine/core/error.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/cleanup.h"
-#include "engine/core/error.h"
 #include "search/segmentation.h"
 
 namespace gmg {
@@ -36,7 +36,8 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
   if (words) {
     text::check_transcript_fits(*words, ev.duration_s, name);
     ev.words = static_cast<int>(words->size());
-    for (const text::KeywordFrame& k : text::keyword_frames(text::detect_keywords(*words, lexicon), fps, ev.total_frames))
+    for (const text::KeywordFrame& k :
+         text::keyword_frames(text::detect_keywords(*words, lexicon), fps, ev.total_frames))
       ev.keyword_frames.emplace_back(k.frame, k.keyword);
   }
   return ev;
@@ -92,10 +93,11 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
   const text::Lexicon lexicon = lexicon_for(config.graph);
   const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
   Reenactment r = reenact_events(g, events, config);
-  nlohmann::ordered_json inputs = {{"graph", graph_name},
-                                   {"audio", speech.audio},
-                                   {"transcript", speech.transcript.empty() ? nlohmann::ordered_json(nullptr)
-                                                                            : nlohmann::ordered_json(speech.transcript)}};
+  nlohmann::ordered_json inputs = {
+      {"graph", graph_name},
+      {"audio", speech.audio},
+      {"transcript",
+       speech.transcript.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(speech.transcript)}};
   nlohmann::ordered_json full;
   full["tool"] = "gmg reenact";
   full["inputs"] = inputs;

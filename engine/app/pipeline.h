@@ -21,18 +21,18 @@ namespace gmg {
 
 // One speech: an audio file and, optionally, a word-timed transcript.
 struct SpeechFiles {
-  std::string audio;        // WAV path (required)
-  std::string transcript;   // "" = none
+  std::string audio;       // WAV path (required)
+  std::string transcript;  // "" = none
   text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
 };
 
 // Speech as frames on a motion grid.
 struct SpeechEvents {
-  double duration_s = 0.0;  // audio duration
-  int total_frames = 0;     // round(duration_s * fps) for test speech; the motion length for a reference
-  std::vector<int> onset_frames;                            // ascending, unique, in [0, total_frames)
+  double duration_s = 0.0;        // audio duration
+  int total_frames = 0;           // round(duration_s * fps) for test speech; the motion length for a reference
+  std::vector<int> onset_frames;  // ascending, unique, in [0, total_frames)
   std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
-  int words = 0;            // transcript words read
+  int words = 0;                                            // transcript words read
 };
 
 // Detects onsets (SPEC "Onset nodes") and keywords in a speech. frame_count < 0 means a test
@@ -51,7 +51,7 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
 text::Lexicon lexicon_for(const GraphParams& params);
 
 struct ReferenceFiles {
-  std::string motion;       // BVH path
+  std::string motion;  // BVH path
   SpeechFiles speech;
 };
 
@@ -59,7 +59,7 @@ struct ReferenceFiles {
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config);
 
 struct Reenactment {
-  Motion motion;            // exactly events.total_frames frames, in the graph's skeleton
+  Motion motion;  // exactly events.total_frames frames, in the graph's skeleton
   Plan plan;
   nlohmann::ordered_json report;
 };

@@ -102,8 +102,9 @@ void draw(cairo_t* cr, const EvaluationPlot& plot) {
   for (double t : plot.junctions_s) vertical(cr, speed, t, speed.y0, audio.y0 + audio.h);
   cairo_stroke(cr);
 
-  frame(cr, speed, "mean joint speed, cm/s: generated (blue)" + std::string(plot.truth_speed.empty() ? "" : ", truth (grey)") +
-                       (plot.junctions_s.empty() ? "" : "; junctions (red)"));
+  frame(cr, speed,
+        "mean joint speed, cm/s: generated (blue)" + std::string(plot.truth_speed.empty() ? "" : ", truth (grey)") +
+            (plot.junctions_s.empty() ? "" : "; junctions (red)"));
   curve(cr, speed, plot.truth_speed, 1.0 / plot.fps, 0.55, 0.55, 0.55);
   curve(cr, speed, plot.generated_speed, 1.0 / plot.fps, 0.1, 0.3, 0.85);
 
@@ -132,9 +133,9 @@ void plot_write(const std::string& path, const EvaluationPlot& plot) {
   if (!svg && !ends_with_ci(path, ".png")) throw Error(path + ": the plot must be a .png or .svg file");
   if (plot.generated_speed.empty() || !(plot.fps > 0)) throw Error(path + ": nothing to plot");
   std::string bytes;
-  cairo_surface_t* surface = svg ? cairo_svg_surface_create_for_stream(append_to_string, &bytes, kWidth, kHeight)
-                                 : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth),
-                                                              static_cast<int>(kHeight));
+  cairo_surface_t* surface =
+      svg ? cairo_svg_surface_create_for_stream(append_to_string, &bytes, kWidth, kHeight)
+          : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth), static_cast<int>(kHeight));
   cairo_t* cr = cairo_create(surface);
   draw(cr, plot);
   cairo_destroy(cr);
@@ -146,9 +147,10 @@ void plot_write(const std::string& path, const EvaluationPlot& plot) {
     status = cairo_surface_write_to_png_stream(surface, append_to_string, &bytes);
   }
   cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) throw Error(path + ": cannot draw the plot (" + cairo_status_to_string(status) + ")");
-  write_file_atomically(path, [&](std::ostream& os) { os.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); },
-                        true);
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw Error(path + ": cannot draw the plot (" + cairo_status_to_string(status) + ")");
+  write_file_atomically(
+      path, [&](std::ostream& os) { os.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }, true);
 }
 
 }  // namespace gmg

@@ -25,9 +25,8 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
   rep["duration_s"] = events.duration_s;
   rep["seed"] = config.seed;
   rep["parameters"] = nlohmann::ordered_json::parse(config_to_json(config));
-  rep["test_events"] = {{"onsets", events.onset_frames.size()},
-                        {"keywords", events.keyword_frames.size()},
-                        {"words", events.words}};
+  rep["test_events"] = {
+      {"onsets", events.onset_frames.size()}, {"keywords", events.keyword_frames.size()}, {"words", events.words}};
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   int accepted = 0;
   for (const PlannedSegment& s : plan.segments) {

@@ -66,15 +66,19 @@ void offset_junction(Motion& out, int filled, int ll, int lr, int right_count, c
   for (int j = 0; j < joints; ++j) {
     // Boundary velocities (as deltas applied on the left) and their mean.
     const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
-    const glm::dquat dl = has_left_prev ? out.rotation(left_last, j) * glm::conjugate(out.rotation(left_last - 1, j)) : identity;
-    const glm::dquat dr = has_right_next ? out.rotation(right_first + 1, j) * glm::conjugate(out.rotation(right_first, j)) : identity;
+    const glm::dquat dl =
+        has_left_prev ? out.rotation(left_last, j) * glm::conjugate(out.rotation(left_last - 1, j)) : identity;
+    const glm::dquat dr =
+        has_right_next ? out.rotation(right_first + 1, j) * glm::conjugate(out.rotation(right_first, j)) : identity;
     const glm::dquat step = slerp_shortest(has_left_prev ? dl : dr, has_right_next ? dr : dl, 0.5);
     const glm::dquat predicted = step * out.rotation(left_last, j);
     glm::dquat excess = glm::normalize(out.rotation(right_first, j) * glm::conjugate(predicted));
     if (excess.w < 0.0) excess = -excess;
 
-    const glm::dvec3 vl = has_left_prev ? out.translation(left_last, j) - out.translation(left_last - 1, j) : glm::dvec3(0.0);
-    const glm::dvec3 vr = has_right_next ? out.translation(right_first + 1, j) - out.translation(right_first, j) : glm::dvec3(0.0);
+    const glm::dvec3 vl =
+        has_left_prev ? out.translation(left_last, j) - out.translation(left_last - 1, j) : glm::dvec3(0.0);
+    const glm::dvec3 vr =
+        has_right_next ? out.translation(right_first + 1, j) - out.translation(right_first, j) : glm::dvec3(0.0);
     const glm::dvec3 mean_step = has_left_prev && has_right_next ? 0.5 * (vl + vr) : (has_left_prev ? vl : vr);
     const glm::dvec3 excess_t = out.translation(right_first, j) - (out.translation(left_last, j) + mean_step);
 

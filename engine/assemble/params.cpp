@@ -4,8 +4,6 @@
 
 namespace gmg {
 
-void blend_params_validate(const BlendParams& p) {
-  require_param(p.l_blend >= 0, "l_blend must be >= 0");
-}
+void blend_params_validate(const BlendParams& p) { require_param(p.l_blend >= 0, "l_blend must be >= 0"); }
 
 }  // namespace gmg

@@ -10,12 +10,12 @@ namespace gmg {
 // Shape of the blend weights over a junction window.
 enum class BlendCurve : std::uint8_t { Linear, Sigmoid };
 inline constexpr EnumName<BlendCurve> kBlendCurveNames[] = {{BlendCurve::Linear, "linear"},
-                                                           {BlendCurve::Sigmoid, "sigmoid"}};
+                                                            {BlendCurve::Sigmoid, "sigmoid"}};
 
 // How a junction is blended (see BlendParams::mode).
 enum class BlendMode : std::uint8_t { Offset, Crossfade };
 inline constexpr EnumName<BlendMode> kBlendModeNames[] = {{BlendMode::Offset, "offset"},
-                                                         {BlendMode::Crossfade, "crossfade"}};
+                                                          {BlendMode::Crossfade, "crossfade"}};
 
 struct BlendParams {
   // Frames on each side of a junction. Retries restart the search at other key nodes, so some

@@ -78,8 +78,8 @@ std::vector<CsvRow> csv_parse(std::string_view text, const std::string& path) {
 std::vector<CsvRow> csv_read_file(const std::string& path) { return csv_parse(read_file_bytes(path), path); }
 
 std::string csv_field(std::string_view s) {
-  const bool plain = s.find_first_of(",\"\n\r") == std::string_view::npos &&
-                     (s.empty() || (s.front() != ' ' && s.back() != ' '));
+  const bool plain =
+      s.find_first_of(",\"\n\r") == std::string_view::npos && (s.empty() || (s.front() != ' ' && s.back() != ' '));
   if (plain) return std::string(s);
   std::string out = "\"";
   for (char c : s) {

@@ -12,8 +12,7 @@
 
 namespace gmg {
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
-                           bool binary) {
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
   static std::atomic<unsigned> counter{0};
   const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
   auto remove_temp = [&] {

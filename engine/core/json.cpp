@@ -26,8 +26,7 @@ class FirstError : public nlohmann::json_sax<nlohmann::json> {
   bool end_object() override { return true; }
   bool start_array(std::size_t) override { return true; }
   bool end_array() override { return true; }
-  bool parse_error(std::size_t position, const std::string& last_token,
-                   const nlohmann::detail::exception&) override {
+  bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception&) override {
     byte = position;
     token = last_token;
     return false;

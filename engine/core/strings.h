@@ -13,9 +13,7 @@ namespace gmg {
 
 // True for ASCII white space: space, tab, CR, LF, FF, VT (what trim removes and the tokenizers
 // of the readers split on).
-inline bool is_ascii_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-}
+inline bool is_ascii_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
 // Removes leading and trailing ASCII white space (is_ascii_space).
 std::string_view trim(std::string_view s);

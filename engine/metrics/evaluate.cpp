@@ -33,8 +33,9 @@ std::vector<int> wrist_joints(const Skeleton& skeleton) {
 namespace {
 
 nlohmann::ordered_json controlled_json(const ControlledScore& s, const std::vector<double>& shifts) {
-  return {{"aligned", s.aligned}, {"shifted", s.shifted},        {"shifts_s", shifts},
-          {"shifted_mean", s.shifted_mean()}, {"shifted_sd", s.shifted_sd()}, {"lift", s.lift()}};
+  return {{"aligned", s.aligned},         {"shifted", s.shifted},
+          {"shifts_s", shifts},           {"shifted_mean", s.shifted_mean()},
+          {"shifted_sd", s.shifted_sd()}, {"lift", s.lift()}};
 }
 
 void check_against(const Motion& generated, const std::string& gen_name, const Motion& other,

@@ -21,19 +21,19 @@ double length_unit_to_cm(const Skeleton& skeleton);
 std::vector<int> wrist_joints(const Skeleton& skeleton);
 
 struct EvaluateData {
-  const Motion* generated = nullptr;          // required
+  const Motion* generated = nullptr;  // required
   std::string generated_name;
-  const Motion* truth = nullptr;              // same skeleton, frame count and fps; null = skip
+  const Motion* truth = nullptr;  // same skeleton, frame count and fps; null = skip
   std::string truth_name;
-  std::vector<const Motion*> reference;       // the reference capture's clips (same skeleton); empty = none
+  std::vector<const Motion*> reference;  // the reference capture's clips (same skeleton); empty = none
   std::string reference_name;
-  const audio::Audio* audio = nullptr;        // the speech; null = skip the sync metrics
+  const audio::Audio* audio = nullptr;              // the speech; null = skip the sync metrics
   const std::vector<int>* source_frames = nullptr;  // graph frames the output was read from (report); null = skip
 };
 
 struct EvaluateOptions {
   MetricParams metrics;
-  int control_shifts = 8;      // circular shifts of the audio for the sync control
+  int control_shifts = 8;  // circular shifts of the audio for the sync control
   double min_shift_s = 2.0;
 };
 

@@ -21,23 +21,21 @@ std::string shape_text(const Eigen::MatrixXd& m) {
 }
 
 // Checks what every metric assumes of a position matrix and returns its joint count.
-int check_positions(const char* fn, const char* what, const Eigen::MatrixXd& pos, double fps,
-                    Eigen::Index min_frames) {
+int check_positions(const char* fn, const char* what, const Eigen::MatrixXd& pos, double fps, Eigen::Index min_frames) {
   if (!(std::isfinite(fps) && fps > 0.0))
     throw Error(std::string(fn) + ": fps must be finite and > 0, got " + std::to_string(fps));
   if (pos.cols() == 0 || pos.cols() % 3 != 0)
     throw Error(std::string(fn) + ": " + what + " has " + std::to_string(pos.cols()) +
                 " columns; expected 3 per joint (x, y, z) and at least one joint");
   if (pos.rows() < min_frames)
-    throw Error(std::string(fn) + ": " + what + " needs at least " + std::to_string(min_frames) +
-                " frames, got " + std::to_string(pos.rows()));
+    throw Error(std::string(fn) + ": " + what + " needs at least " + std::to_string(min_frames) + " frames, got " +
+                std::to_string(pos.rows()));
   if (!pos.allFinite()) {
     for (Eigen::Index r = 0; r < pos.rows(); ++r)
       for (Eigen::Index c = 0; c < pos.cols(); ++c)
         if (!std::isfinite(pos(r, c)))
-          throw Error(std::string(fn) + ": " + what + " has a non-finite value at frame " +
-                      std::to_string(r) + ", joint " + std::to_string(c / 3) + ", axis " +
-                      "xyz"[c % 3]);
+          throw Error(std::string(fn) + ": " + what + " has a non-finite value at frame " + std::to_string(r) +
+                      ", joint " + std::to_string(c / 3) + ", axis " + "xyz"[c % 3]);
   }
   return static_cast<int>(pos.cols() / 3);
 }
@@ -47,8 +45,7 @@ void check_params(const char* fn, const MetricParams& p) {
   if (!(std::isfinite(p.bc_sigma_s) && p.bc_sigma_s > 0.0)) bad("bc_sigma_s must be > 0");
   if (p.smooth_window < 0) bad("smooth_window must be >= 0");
   if (!(p.div_angle_deg > 0.0 && p.div_angle_deg < 180.0)) bad("div_angle_deg must be in (0, 180)");
-  if (!(std::isfinite(p.div_min_speed_frac) && p.div_min_speed_frac >= 0.0))
-    bad("div_min_speed_frac must be >= 0");
+  if (!(std::isfinite(p.div_min_speed_frac) && p.div_min_speed_frac >= 0.0)) bad("div_min_speed_frac must be >= 0");
   if (!(std::isfinite(p.hist_bin_width) && p.hist_bin_width > 0.0)) bad("hist_bin_width must be > 0");
   if (p.hist_bin_count < 1 || p.hist_bin_count > 100000) bad("hist_bin_count must be in [1, 100000]");
   // Genea bins cover [0, 49]: a width below 49 / 100000 would allocate an absurd histogram.
@@ -101,8 +98,7 @@ double metric_syn(const Eigen::MatrixXd& gen, const Eigen::MatrixXd& truth, doub
   check_positions("metric_syn", "generated motion", gen, fps, 2);
   check_positions("metric_syn", "ground-truth motion", truth, fps, 2);
   if (gen.rows() != truth.rows() || gen.cols() != truth.cols())
-    throw Error("metric_syn: shapes differ: generated " + shape_text(gen) + ", ground truth " +
-                shape_text(truth));
+    throw Error("metric_syn: shapes differ: generated " + shape_text(gen) + ", ground truth " + shape_text(truth));
   return (backward_speeds(gen, fps) - backward_speeds(truth, fps)).cwiseAbs().mean();
 }
 
@@ -115,8 +111,7 @@ std::vector<double> motion_beats(const Eigen::MatrixXd& pos, double fps, const M
   std::vector<double> s(static_cast<std::size_t>(n));
   for (Eigen::Index t = 1; t <= n; ++t) {
     double sum = 0.0;
-    for (int j = 0; j < joints; ++j)
-      sum += (pos.block<1, 3>(t + 1, 3 * j) - pos.block<1, 3>(t - 1, 3 * j)).norm();
+    for (int j = 0; j < joints; ++j) sum += (pos.block<1, 3>(t + 1, 3 * j) - pos.block<1, 3>(t - 1, 3 * j)).norm();
     s[static_cast<std::size_t>(t - 1)] = sum / joints * fps / 2.0;
   }
   s = smooth(s, params.smooth_window);
@@ -201,8 +196,8 @@ double metric_hellinger_speed(const Eigen::MatrixXd& gen, const Eigen::MatrixXd&
   const int jg = check_positions("metric_hellinger_speed", "generated motion", gen, fps, 2);
   const int jt = check_positions("metric_hellinger_speed", "ground-truth motion", truth, fps, 2);
   if (jg != jt)
-    throw Error("metric_hellinger_speed: joint counts differ: generated " + shape_text(gen) +
-                ", ground truth " + shape_text(truth));
+    throw Error("metric_hellinger_speed: joint counts differ: generated " + shape_text(gen) + ", ground truth " +
+                shape_text(truth));
   std::vector<int> selected = joints;
   if (selected.empty())
     for (int j = 0; j < jg; ++j) selected.push_back(j);

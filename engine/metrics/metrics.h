@@ -30,7 +30,7 @@ namespace gmg {
 //    are dropped before normalising. On BEAT2, 38-67 % of all joint speeds exceed 49 cm/s.
 enum class HistogramBins : std::uint8_t { Overflow, Genea };
 inline constexpr EnumName<HistogramBins> kHistogramBinsNames[] = {{HistogramBins::Overflow, "overflow"},
-                                                                 {HistogramBins::Genea, "genea"}};
+                                                                  {HistogramBins::Genea, "genea"}};
 
 struct MetricParams {
   // Beat consistency Gaussian width (s). Bailando's BeatAlign score, which DanceFormer-style BC

@@ -29,10 +29,10 @@ double root_speed(const Eigen::MatrixXd& pos, double fps);
 // What a reference clip contributes to the ratios, computed once and shared by every motion
 // scored against it.
 struct NaturalnessReference {
-  double jerk = 0;           // root-relative average jerk (cm/s^3), metric_jerk's formula
-  double acceleration = 0;   // root-relative average acceleration (cm/s^2)
-  double root_speed = 0;     // cm/s
-  double step_p999 = 0;      // 99.9th percentile of its frame_steps (cm)
+  double jerk = 0;          // root-relative average jerk (cm/s^3), metric_jerk's formula
+  double acceleration = 0;  // root-relative average acceleration (cm/s^2)
+  double root_speed = 0;    // cm/s
+  double step_p999 = 0;     // 99.9th percentile of its frame_steps (cm)
 };
 NaturalnessReference naturalness_reference(const Eigen::MatrixXd& pos, double fps);
 

@@ -90,7 +90,8 @@ std::vector<double> moving_average(const std::vector<double>& x, int half) {
   for (int i = 0; i < n; ++i) {
     double sum = 0.0;
     int count = 0;
-    for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k, ++count) sum += x[static_cast<std::size_t>(k)];
+    for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k, ++count)
+      sum += x[static_cast<std::size_t>(k)];
     y[static_cast<std::size_t>(i)] = sum / count;
   }
   return y;
@@ -114,7 +115,8 @@ double metric_speech_correlation(const Eigen::MatrixXd& pos, double fps, const s
     ++count[static_cast<std::size_t>(t)];
   }
   for (int t = 0; t < frames; ++t)
-    if (count[static_cast<std::size_t>(t)] > 0) strength[static_cast<std::size_t>(t)] /= count[static_cast<std::size_t>(t)];
+    if (count[static_cast<std::size_t>(t)] > 0)
+      strength[static_cast<std::size_t>(t)] /= count[static_cast<std::size_t>(t)];
   // Mean root-relative joint speed, frame t from t - 1 (frame 0 takes frame 1's).
   const Eigen::MatrixXd rel = root_relative(pos);
   const Eigen::Index joints = pos.cols() / 3;

@@ -23,8 +23,8 @@ struct SpeechTrack {
 
 struct SyncControl {
   SpeechTrack aligned;
-  std::vector<double> shifts_s;       // the circular shifts, seconds
-  std::vector<SpeechTrack> shifted;   // one per shift
+  std::vector<double> shifts_s;      // the circular shifts, seconds
+  std::vector<SpeechTrack> shifted;  // one per shift
 };
 
 // `count` circular shifts spread evenly over [min_shift_s, duration_s - min_shift_s], so each is
@@ -45,7 +45,7 @@ struct ControlledScore {
   double aligned = 0.0;
   std::vector<double> shifted;  // one per shift
   double shifted_mean() const;
-  double shifted_sd() const;    // sample standard deviation of the shifted values
+  double shifted_sd() const;  // sample standard deviation of the shifted values
   double lift() const { return aligned - shifted_mean(); }
 };
 

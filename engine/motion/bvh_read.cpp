@@ -152,19 +152,21 @@ bool parse_frame_line(const char* begin, const char* end, std::vector<double>& v
     double v = 0.0;
     const auto res = std::from_chars(p, token_end, v);
     if (res.ec != std::errc() || res.ptr != token_end)
-      throw Error(error_at_line(name, line, "value " + std::to_string(values.size() + 1) + " is not a number: '" +
-                                                std::string(p, token_end) + "'"));
+      throw Error(error_at_line(
+          name, line,
+          "value " + std::to_string(values.size() + 1) + " is not a number: '" + std::string(p, token_end) + "'"));
     if (!std::isfinite(v))
-      throw Error(error_at_line(name, line, "value " + std::to_string(values.size() + 1) + " is not finite: '" +
-                                                std::string(p, token_end) + "'"));
+      throw Error(error_at_line(
+          name, line,
+          "value " + std::to_string(values.size() + 1) + " is not finite: '" + std::string(p, token_end) + "'"));
     values.push_back(v);
     p = token_end;
   }
   if (values.empty()) return false;
   if (static_cast<int>(values.size()) != expected)
-    throw Error(error_at_line(name, line, "frame has " + std::to_string(values.size()) +
-                                              " values but the hierarchy declares " +
-                                              std::to_string(expected) + " channels"));
+    throw Error(error_at_line(name, line,
+                              "frame has " + std::to_string(values.size()) + " values but the hierarchy declares " +
+                                  std::to_string(expected) + " channels"));
   return true;
 }
 
@@ -216,8 +218,8 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
     if (eol == std::string::npos) eol = text.size();
     if (parse_frame_line(text.data() + pos, text.data() + eol, values, channels, name, line)) {
       if (frame >= m.frame_count)
-        throw Error(error_at_line(name, line, "more frame lines than the " + std::to_string(m.frame_count) +
-                                                  " declared by 'Frames:'"));
+        throw Error(error_at_line(
+            name, line, "more frame lines than the " + std::to_string(m.frame_count) + " declared by 'Frames:'"));
       int c = 0;
       for (int j = 0; j < joints; ++j) {
         const Joint& joint = sk.joints[j];
@@ -242,8 +244,9 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
     ++line;
   }
   if (frame < m.frame_count)
-    throw Error(error_at_line(name, line - 1, "truncated: 'Frames:' declares " + std::to_string(m.frame_count) +
-                                                  " frames but the file has " + std::to_string(frame)));
+    throw Error(error_at_line(name, line - 1,
+                              "truncated: 'Frames:' declares " + std::to_string(m.frame_count) +
+                                  " frames but the file has " + std::to_string(frame)));
   return m;
 }
 

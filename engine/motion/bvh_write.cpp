@@ -27,8 +27,8 @@ void format_joint(const Skeleton& sk, int j, int depth, std::string& out) {
     if (sk.joints[child].parent == j) format_joint(sk, child, depth + 1, out);
   if (joint.has_end_site) {
     out += indent + "\tEnd Site\n" + indent + "\t{\n";
-    std::snprintf(buf, sizeof buf, "%s\t\tOFFSET %.6f %.6f %.6f\n", indent.c_str(), joint.end_site.x,
-                  joint.end_site.y, joint.end_site.z);
+    std::snprintf(buf, sizeof buf, "%s\t\tOFFSET %.6f %.6f %.6f\n", indent.c_str(), joint.end_site.x, joint.end_site.y,
+                  joint.end_site.z);
     out += buf;
     out += indent + "\t}\n";
   }
@@ -53,9 +53,9 @@ std::string bvh_format(const Motion& m) {
       const Joint& joint = sk.joints[j];
       if (joint.channels.empty()) continue;
       const bool hinted = !m.euler_hints.empty();
-      const glm::dvec3 angles = hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order,
-                                                                m.euler_hints[m.index(f, j)])
-                                       : quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
+      const glm::dvec3 angles =
+          hinted ? quat_to_euler_matching(m.rotation(f, j), joint.rotation_order, m.euler_hints[m.index(f, j)])
+                 : quat_to_euler_near(m.rotation(f, j), joint.rotation_order, previous[j]);
       previous[j] = angles;
       const glm::dvec3& t = m.translation(f, j);
       int rot_index = 0;

@@ -8,12 +8,18 @@ namespace gmg {
 
 const char* channel_name(Channel c) {
   switch (c) {
-    case Channel::Xposition: return "Xposition";
-    case Channel::Yposition: return "Yposition";
-    case Channel::Zposition: return "Zposition";
-    case Channel::Xrotation: return "Xrotation";
-    case Channel::Yrotation: return "Yrotation";
-    case Channel::Zrotation: return "Zrotation";
+    case Channel::Xposition:
+      return "Xposition";
+    case Channel::Yposition:
+      return "Yposition";
+    case Channel::Zposition:
+      return "Zposition";
+    case Channel::Xrotation:
+      return "Xrotation";
+    case Channel::Yrotation:
+      return "Yrotation";
+    case Channel::Zrotation:
+      return "Zrotation";
   }
   return "?";
 }
@@ -50,8 +56,8 @@ bool skeletons_match(const Skeleton& a, const Skeleton& b, std::string* why) {
     return false;
   };
   if (a.joint_count() != b.joint_count())
-    return fail("joint counts differ (" + std::to_string(a.joint_count()) + " vs " +
-                std::to_string(b.joint_count()) + ")");
+    return fail("joint counts differ (" + std::to_string(a.joint_count()) + " vs " + std::to_string(b.joint_count()) +
+                ")");
   for (int i = 0; i < a.joint_count(); ++i) {
     const Joint& ja = a.joints[i];
     const Joint& jb = b.joints[i];
@@ -78,8 +84,8 @@ Motion motion_rest(const Skeleton& skeleton, double fps, int frame_count) {
 
 Motion motion_slice(const Motion& m, int from, int to) {
   if (from < 0 || to < from || to > m.frame_count)
-    throw Error("motion_slice: range [" + std::to_string(from) + ", " + std::to_string(to) +
-                ") outside 0.." + std::to_string(m.frame_count));
+    throw Error("motion_slice: range [" + std::to_string(from) + ", " + std::to_string(to) + ") outside 0.." +
+                std::to_string(m.frame_count));
   Motion out;
   out.skeleton = m.skeleton;
   out.fps = m.fps;
@@ -134,8 +140,8 @@ void motion_check_finite(const Motion& m, const std::string& what) {
     if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) ||
         !std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z)) {
       const std::size_t joints = m.skeleton.joints.size();
-      throw Error(what + ": frame " + std::to_string(i / joints) + ", joint '" +
-                  m.skeleton.joints[i % joints].name + "': value is not finite");
+      throw Error(what + ": frame " + std::to_string(i / joints) + ", joint '" + m.skeleton.joints[i % joints].name +
+                  "': value is not finite");
     }
   }
 }

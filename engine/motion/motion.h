@@ -28,13 +28,13 @@ EulerOrder rotation_order_from_channels(const std::vector<Channel>& channels);
 
 struct Joint {
   std::string name;
-  int parent = -1;                  // index of the parent joint; -1 only for the root; always < own index
-  glm::dvec3 offset{0.0};           // rest translation from the parent, in file units
-  std::vector<Channel> channels;    // in file order; 0 to 6 entries, each axis at most once per kind
+  int parent = -1;                     // index of the parent joint; -1 only for the root; always < own index
+  glm::dvec3 offset{0.0};              // rest translation from the parent, in file units
+  std::vector<Channel> channels;       // in file order; 0 to 6 entries, each axis at most once per kind
   EulerOrder rotation_order{2, 0, 1};  // rotation axes outermost first: the listed rotation channels,
                                        // then any missing axes (whose angle is always 0)
-  bool has_end_site = false;        // an "End Site" block follows the joint's children
-  glm::dvec3 end_site{0.0};         // its offset, meaningful only when has_end_site
+  bool has_end_site = false;           // an "End Site" block follows the joint's children
+  glm::dvec3 end_site{0.0};            // its offset, meaningful only when has_end_site
 };
 
 struct Skeleton {

@@ -57,7 +57,8 @@ class AblationRun : public ::testing::Test {
     delete dir_;
   }
   static const AblationRow& row(AblationSetup s) {
-    return *std::find_if(result_->rows.begin(), result_->rows.end(), [s](const AblationRow& r) { return r.setup == s; });
+    return *std::find_if(result_->rows.begin(), result_->rows.end(),
+                         [s](const AblationRow& r) { return r.setup == s; });
   }
   static gmg::testing::TempDir* dir_;
   static AblationResult* result_;
@@ -68,7 +69,7 @@ AblationResult* AblationRun::result_ = nullptr;
 TEST_F(AblationRun, SevenSetupsOverFoldsAndSeeds) {
   ASSERT_EQ(result_->rows.size(), 7u);
   const char* names[] = {"weak_detection", "weak_pruning", "weak_initialization", "no_fallback",
-                         "full", "contiguous", "random_chunks"};
+                         "full",           "contiguous",   "random_chunks"};
   for (std::size_t i = 0; i < 7; ++i) {
     EXPECT_EQ(enum_name(kAblationSetupNames, result_->rows[i].setup), std::string(names[i]));
     ASSERT_EQ(result_->rows[i].scores.size(), 6u);  // 3 folds x 2 seeds

@@ -12,16 +12,16 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "audio/wav.h"
 #include "engine/app/batch/batch.h"
-#include "engine/motion/bvh.h"
+#include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
-#include "engine/app/synth/synth.h"
+#include "engine/motion/bvh.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -153,7 +153,7 @@ TEST(BatchDraw, IsSeededReproducibleAndNeverPairsAClipWithItself) {
   EXPECT_NE(d1, d3);
   std::map<std::string, int> counts;
   for (const std::string& r : d1) ++counts[r];
-  EXPECT_EQ(counts.size(), 4u);  // every reference is drawn
+  EXPECT_EQ(counts.size(), 4u);                             // every reference is drawn
   for (const auto& [r, n] : counts) EXPECT_GT(n, 25) << r;  // roughly uniform (50 expected)
   EXPECT_NE(d1.back(), "b");
   EXPECT_EQ(batch_draw_references({"only"}, {"only"}, 1), std::vector<std::string>{""});

@@ -40,8 +40,8 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 TEST(Cli, EverySubcommandsHelpExitsZeroAndListsItsOptions) {
   // One option each subcommand must have (its own, not a shared one).
   const std::vector<std::pair<std::string, std::string>> commands = {
-      {"build", "--motion"},   {"inspect", "--graphml"},   {"reenact", "--reference-motion"},
-      {"evaluate", "--truth"}, {"batch", "--pool-manifest"}, {"ablation", "--folds"},
+      {"build", "--motion"},    {"inspect", "--graphml"},     {"reenact", "--reference-motion"},
+      {"evaluate", "--truth"},  {"batch", "--pool-manifest"}, {"ablation", "--folds"},
       {"synth", "--no-motion"}, {"config", "--keys"}};
   for (const auto& [name, option] : commands) {
     const CliRun r = run({name, "--help"});
@@ -65,9 +65,9 @@ TEST(Cli, ParseErrorsExitNonZero) {
   EXPECT_TRUE(contains(unknown.err, "--no-such-option")) << unknown.err;
   EXPECT_TRUE(unknown.out.empty()) << unknown.out;  // the callback did not run
   EXPECT_NE(run({"build", "--no-such-option", "x"}).code, 0);
-  EXPECT_NE(run({}).code, 0);                           // a subcommand is required
-  EXPECT_NE(run({"frobnicate"}).code, 0);               // an unknown subcommand
-  EXPECT_NE(run({"reenact", "--graph", "g.gmg"}).code, 0);  // required --audio and -o missing
+  EXPECT_NE(run({}).code, 0);                                    // a subcommand is required
+  EXPECT_NE(run({"frobnicate"}).code, 0);                        // an unknown subcommand
+  EXPECT_NE(run({"reenact", "--graph", "g.gmg"}).code, 0);       // required --audio and -o missing
   EXPECT_NE(run({"synth", "-o", "x", "--style", "2"}).code, 0);  // outside 0..1
 }
 

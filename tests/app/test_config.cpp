@@ -104,8 +104,8 @@ TEST(ConfigFrom, DefaultsThenFileThenAssignmentsInOrderThenValidation) {
   const std::string file = dir.file("c.json");
   write_text(file, R"({"l_pn": 2, "l_cn": 7, "init": "random"})");
   const Config c = config_from(file, {"l_pn=5", "l_pn=6", "retries=0"});
-  EXPECT_EQ(c.graph.l_pn, 6);        // the last --set wins over the file
-  EXPECT_EQ(c.graph.l_cn, 7);        // the file over the default
+  EXPECT_EQ(c.graph.l_pn, 6);  // the last --set wins over the file
+  EXPECT_EQ(c.graph.l_cn, 7);  // the file over the default
   EXPECT_EQ(c.search.init, InitMode::Random);
   EXPECT_EQ(c.search.retries, 0);
   EXPECT_EQ(c.search.l_npaths, Config{}.search.l_npaths);  // untouched keys keep their default
@@ -168,9 +168,9 @@ TEST(ConfigToJson, RoundTripsThroughConfigLoadFile) {
   EXPECT_EQ(config_to_json(c), defaults);
 
   Config changed;
-  for (const char* a : {"l_pn=2", "lambda_occ=0.1", "exclude_near=false", "keywords=k.txt", "init=random",
-                        "blend_curve=linear", "lock_joints=Neck,Head", "seed=123456789",
-                        "w_full=1,2,3,4,5,6,7,8,9,0.3"})
+  for (const char* a :
+       {"l_pn=2", "lambda_occ=0.1", "exclude_near=false", "keywords=k.txt", "init=random", "blend_curve=linear",
+        "lock_joints=Neck,Head", "seed=123456789", "w_full=1,2,3,4,5,6,7,8,9,0.3"})
     config_set_assignment(changed, a);
   const std::string text = config_to_json(changed);
   write_text(file, text);

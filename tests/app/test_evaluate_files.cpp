@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/motion/bvh.h"
-#include "engine/core/error.h"
-#include "engine/core/files.h"
 #include "engine/app/evaluate_files.h"
 #include "engine/app/synth/synth.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/motion/bvh.h"
 #include "tests/test_support.h"
 
 namespace gmg {

@@ -40,8 +40,8 @@ class SynthPipeline : public ::testing::Test {
     test.duration_s = 15;
     test.seed = 12;
     synth_write(synth_speaker(test), dir_->path().string(), "test");
-    ASSERT_EQ(run_cli({"build", "--motion", file("ref.bvh"), "--audio", file("ref.wav"), "--transcript", file("ref.tsv"),
-                       "-o", file("ref.gmg")}),
+    ASSERT_EQ(run_cli({"build", "--motion", file("ref.bvh"), "--audio", file("ref.wav"), "--transcript",
+                       file("ref.tsv"), "-o", file("ref.gmg")}),
               0);
   }
   static void TearDownTestSuite() {
@@ -55,8 +55,8 @@ gmg::testing::TempDir* SynthPipeline::dir_ = nullptr;
 
 TEST_F(SynthPipeline, SameSeedGivesByteIdenticalOutput) {
   auto run = [&](const std::string& tag, const std::string& seed) {
-    EXPECT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript", file("test.tsv"),
-                       "-o", file(tag + ".bvh"), "--report", file(tag + ".json"), "--seed", seed}),
+    EXPECT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript",
+                       file("test.tsv"), "-o", file(tag + ".bvh"), "--report", file(tag + ".json"), "--seed", seed}),
               0);
     return read_file_bytes(file(tag + ".bvh")) + read_file_bytes(file(tag + ".json"));
   };
@@ -73,8 +73,8 @@ TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
   const MotionGraph g = graph_load(file("ref.gmg"));
   Config cfg;
   cfg.search.init = InitMode::Random;
-  const SpeechEvents ev = speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph,
-                                         lexicon_for(cfg.graph));
+  const SpeechEvents ev =
+      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
   auto motion_bytes = [&](std::uint64_t seed) {
     cfg.seed = seed;
     return bvh_format(reenact_events(g, ev, cfg).motion);
@@ -84,8 +84,8 @@ TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
 }
 
 TEST_F(SynthPipeline, ReportCountsEverySubsequence) {
-  ASSERT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript", file("test.tsv"),
-                     "-o", file("r.bvh"), "--report", file("r.json")}),
+  ASSERT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript",
+                     file("test.tsv"), "-o", file("r.bvh"), "--report", file("r.json")}),
             0);
   const nlohmann::json r = nlohmann::json::parse(read_file_bytes(file("r.json")));
   // The same job in process: the report must describe this plan, segment by segment.
@@ -102,7 +102,8 @@ TEST_F(SynthPipeline, ReportCountsEverySubsequence) {
     with_fallback += segs[i].fallback != Fallback::None;
   }
   EXPECT_GT(with_fallback, 0) << "the synthetic test speech has keywords the reference lacks";
-  EXPECT_EQ(r["totals"]["fallbacks"]["keyword_to_rhythm"].get<int>(), direct.plan.fallback_count(Fallback::KeywordToRhythm));
+  EXPECT_EQ(r["totals"]["fallbacks"]["keyword_to_rhythm"].get<int>(),
+            direct.plan.fallback_count(Fallback::KeywordToRhythm));
   EXPECT_EQ(r["totals"]["subsequences"].get<std::size_t>(), segs.size());
   EXPECT_EQ(r["inputs"]["transcript"], file("test.tsv"));
 }
@@ -113,8 +114,8 @@ TEST_F(SynthPipeline, BadInputsFailWithoutOutput) {
   EXPECT_NE(run_cli({"reenact", "--graph", file("missing.gmg"), "--audio", file("test.wav"), "-o", file("x.bvh")}), 0);
   // A transcript past the audio's end.
   gmg::testing::write_text(file("late.tsv"), "1.0\t1.5\thello\n30.0\t31.0\tbig\n");
-  EXPECT_NE(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript", file("late.tsv"),
-                     "-o", file("x.bvh")}),
+  EXPECT_NE(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript",
+                     file("late.tsv"), "-o", file("x.bvh")}),
             0);
   EXPECT_NE(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "-o", file("x.bvh"), "--set",
                      "l_npaths=0"}),
@@ -126,9 +127,10 @@ TEST(PipelineRealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {
   GMG_REQUIRE_SHARED_DATA();
   const std::string d = gmg::testing::shared_data_dir();
   Config cfg;
-  const MotionGraph g = graph_build_from_files(
-      {{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
-      cfg);
+  const MotionGraph g =
+      graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh",
+                               {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+                             cfg);
   const GraphStats s = graph_stats(g);
   EXPECT_EQ(s.onset_nodes, 115);  // librosa finds 115 onsets in this recording
   EXPECT_GT(s.keyword_nodes, 20);
@@ -156,7 +158,8 @@ TEST(PipelineRealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {
     }
     EXPECT_EQ(r.plan.failure_count(), 0);
     const auto& fb = r.report["totals"]["fallbacks"];
-    EXPECT_EQ(counted, fb["keyword_to_rhythm"].get<int>() + fb["ignore_stops"].get<int>() + fb["hold_last_frame"].get<int>());
+    EXPECT_EQ(counted,
+              fb["keyword_to_rhythm"].get<int>() + fb["ignore_stops"].get<int>() + fb["hold_last_frame"].get<int>());
   }
 }
 

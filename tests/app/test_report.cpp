@@ -19,8 +19,8 @@ PlannedSegment segment(int start, int length, Fallback fallback, bool accepted, 
 TEST(Report, FallbackNamesAndTotalsFollowThePlan) {
   Plan plan;
   plan.segments = {segment(0, 10, Fallback::None, true, false), segment(10, 5, Fallback::KeywordToRhythm, true, false),
-                   segment(15, 8, Fallback::IgnoreStops, true, false), segment(23, 7, Fallback::HoldLastFrame, false, false),
-                   segment(30, 4, Fallback::None, false, true)};
+                   segment(15, 8, Fallback::IgnoreStops, true, false),
+                   segment(23, 7, Fallback::HoldLastFrame, false, false), segment(30, 4, Fallback::None, false, true)};
   plan.segments[1].sub.kind = Termination::Keyword;
   plan.segments[1].sub.keyword = "big";
   SpeechEvents ev;

@@ -11,10 +11,10 @@
 
 #include "audio/onset.h"
 #include "audio/wav.h"
-#include "engine/motion/bvh.h"
-#include "engine/core/error.h"
-#include "engine/motion/motion.h"
 #include "engine/app/synth/synth.h"
+#include "engine/core/error.h"
+#include "engine/motion/bvh.h"
+#include "engine/motion/motion.h"
 #include "tests/test_support.h"
 #include "text/keywords.h"
 #include "text/transcript.h"
@@ -76,8 +76,8 @@ TEST(Synth, SizesAndTranscriptShape) {
     double duration, fps;
     int rate;
   };
-  for (const Case& k : {Case{10.01, 30.0, 16000}, Case{7.77, 25.0, 22050}, Case{0.5, 60.0, 8000},
-                        Case{13.333, 30.0, 44100}}) {
+  for (const Case& k :
+       {Case{10.01, 30.0, 16000}, Case{7.77, 25.0, 22050}, Case{0.5, 60.0, 8000}, Case{13.333, 30.0, 44100}}) {
     SynthSpec s = spec_of(k.duration, 7);
     s.fps = k.fps;
     s.sample_rate = k.rate;
@@ -117,8 +117,8 @@ TEST(Synth, SizesAndTranscriptShape) {
     speech += p.end - p.start;
   }
   const double rate = clip.syllables.size() / speech;
-  std::printf("30 s clip: %zu phrases, %zu words, %zu syllables, %.2f syllables/s of speech\n",
-              clip.phrases.size(), clip.words.size(), clip.syllables.size(), rate);
+  std::printf("30 s clip: %zu phrases, %zu words, %zu syllables, %.2f syllables/s of speech\n", clip.phrases.size(),
+              clip.words.size(), clip.syllables.size(), rate);
   EXPECT_GT(rate, 3.5);
   EXPECT_LT(rate, 5.5);
 }
@@ -272,11 +272,12 @@ TEST(Synth, OnsetsFollowStressedSyllables) {
     }
     std::sort(offsets.begin(), offsets.end());
     const double median = offsets.empty() ? 0 : offsets[offsets.size() / 2];
-    std::printf("seed %d style %.0f: %zu syllables (%d stressed), %zu onsets; stressed syllables with an "
-                "onset within 50 ms: %d, 100 ms before to 50 ms after: %d, an envelope peak within "
-                "50 ms: %d; median onset offset %+.0f ms; %d stray onsets\n",
-                static_cast<int>(seed), style, clip.syllables.size(), stressed, onsets.size(), within50,
-                within_lead, peak, 1000 * median, stray);
+    std::printf(
+        "seed %d style %.0f: %zu syllables (%d stressed), %zu onsets; stressed syllables with an "
+        "onset within 50 ms: %d, 100 ms before to 50 ms after: %d, an envelope peak within "
+        "50 ms: %d; median onset offset %+.0f ms; %d stray onsets\n",
+        static_cast<int>(seed), style, clip.syllables.size(), stressed, onsets.size(), within50, within_lead, peak,
+        1000 * median, stray);
     EXPECT_GE(static_cast<int>(onsets.size()), stressed / 2);
     EXPECT_LE(onsets.size(), clip.syllables.size() + 2);
     EXPECT_GE(within50, 0.6 * stressed);
@@ -332,9 +333,10 @@ TEST(Synth, MotionIsSmoothVisibleAndFollowsStress) {
       }
       ASSERT_GT(nn, 0);
       ASSERT_GT(np, 0);
-      std::printf("style %.0f %s: max step %.2f cm/frame, range %.1f cm, mean speed near stress %.2f, "
-                  "in pauses %.2f cm/frame\n",
-                  style, name, max_step, range, sn / nn, sp / np);
+      std::printf(
+          "style %.0f %s: max step %.2f cm/frame, range %.1f cm, mean speed near stress %.2f, "
+          "in pauses %.2f cm/frame\n",
+          style, name, max_step, range, sn / nn, sp / np);
       EXPECT_LT(max_step, 5.0);
       EXPECT_GT(range, 10.0);
       // The dominant (right) hand carries the beats; the other one joins in more weakly.
@@ -360,8 +362,8 @@ TEST(Synth, LongClipForBenchmarks) {
   const auto t0 = std::chrono::steady_clock::now();
   const SynthClip clip = gmg::synth_speaker(s);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("12,800-frame clip (%.1f s, 60 joints): generated in %.2f s, %zu words, %zu keywords\n",
-              s.duration_s, secs, clip.words.size(), clip.keyword_times.size());
+  std::printf("12,800-frame clip (%.1f s, 60 joints): generated in %.2f s, %zu words, %zu keywords\n", s.duration_s,
+              secs, clip.words.size(), clip.keyword_times.size());
   EXPECT_EQ(clip.motion.frame_count, 12800);
   EXPECT_EQ(clip.audio.samples.size(), static_cast<std::size_t>(std::lround(s.duration_s * 16000)));
   EXPECT_LT(secs, 60.0);

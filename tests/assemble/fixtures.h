@@ -15,8 +15,8 @@ inline Motion arm_motion(const std::vector<double>& angles) {
   Skeleton sk;
   Joint root;
   root.name = "root";
-  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation, Channel::Xrotation,
-                   Channel::Yrotation};
+  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition,
+                   Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
   Joint arm;
   arm.name = "arm";
   arm.parent = 0;
@@ -47,9 +47,9 @@ inline std::vector<double> ramp(double from, double step, int n) {
   return out;
 }
 
-
 // Hand positions of an arm whose angle follows `angles`.
-inline Eigen::MatrixXd hand_path(const std::vector<double>& angles) { return motion_forward_kinematics(arm_motion(angles)); }
-
+inline Eigen::MatrixXd hand_path(const std::vector<double>& angles) {
+  return motion_forward_kinematics(arm_motion(angles));
+}
 
 }  // namespace gmg::testing

@@ -24,7 +24,8 @@ TEST(Blend, JunctionHasNoJump) {
       const Motion out = blend_concatenate({left, right}, params);
       ASSERT_EQ(out.frame_count, 60);
       const double inputs = std::max(max_step(hand_path(a), 20, 30), max_step(hand_path(b), 0, 10));
-      EXPECT_LE(max_step(motion_forward_kinematics(out), 20, 40), inputs * (1.0 + 1e-9)) << enum_name(kBlendCurveNames, curve) << " from " << b[0];
+      EXPECT_LE(max_step(motion_forward_kinematics(out), 20, 40), inputs * (1.0 + 1e-9))
+          << enum_name(kBlendCurveNames, curve) << " from " << b[0];
       // Away from the junction the pieces are untouched.
       EXPECT_LT(rotation_angle_between(out.rotation(10, 1), left.rotation(10, 1)), 1e-9);
       EXPECT_LT(rotation_angle_between(out.rotation(50, 1), right.rotation(20, 1)), 1e-9);
@@ -33,10 +34,12 @@ TEST(Blend, JunctionHasNoJump) {
   // A continuous join comes out exactly as the raw concatenation.
   const Motion joined = blend_concatenate({arm_motion(a), arm_motion(rights[1])}, params);
   const Motion whole = arm_motion(ramp(0.0, 0.04, 60));
-  for (int f = 0; f < 60; ++f) EXPECT_LT(rotation_angle_between(joined.rotation(f, 1), whole.rotation(f, 1)), 1e-7) << f;
+  for (int f = 0; f < 60; ++f)
+    EXPECT_LT(rotation_angle_between(joined.rotation(f, 1), whole.rotation(f, 1)), 1e-7) << f;
   // Without blending, case (a) jumps back by 0.2 rad: the check above can fail.
   params.l_blend = 0;
-  const double raw = max_step(motion_forward_kinematics(blend_concatenate({arm_motion(a), arm_motion(rights[0])}, params)), 20, 40);
+  const double raw =
+      max_step(motion_forward_kinematics(blend_concatenate({arm_motion(a), arm_motion(rights[0])}, params)), 20, 40);
   EXPECT_GT(raw, 4.0 * max_step(hand_path(a), 20, 30));
 }
 
@@ -46,8 +49,8 @@ TEST(Blend, GapAlongTheMotionIsSpreadEvenly) {
   BlendParams params;
   params.curve = BlendCurve::Linear;
   params.l_blend = 4;
-  const Eigen::MatrixXd p =
-      motion_forward_kinematics(blend_concatenate({arm_motion(ramp(0.0, 0.04, 30)), arm_motion(ramp(1.32, 0.04, 30))}, params));
+  const Eigen::MatrixXd p = motion_forward_kinematics(
+      blend_concatenate({arm_motion(ramp(0.0, 0.04, 30)), arm_motion(ramp(1.32, 0.04, 30))}, params));
   const double radius = 30.0;
   auto chord = [&](double angle) { return radius * 2.0 * std::sin(angle / 2.0); };
   for (int f = 26; f <= 34; ++f) EXPECT_NEAR((p.row(f) - p.row(f - 1)).norm(), chord(0.04 + 0.12 / 9.0), 1e-9) << f;
@@ -89,7 +92,8 @@ TEST(Blend, QuaternionsTakeTheShortArc) {
     params.mode = mode;
     const Motion out = blend_concatenate({left, right}, params);
     for (int f = 1; f < out.frame_count; ++f)
-      EXPECT_LT(rotation_angle_between(out.rotation(f, 1), out.rotation(f - 1, 1)), 0.05 + 1e-9) << enum_name(kBlendModeNames, mode) << " " << f;
+      EXPECT_LT(rotation_angle_between(out.rotation(f, 1), out.rotation(f - 1, 1)), 0.05 + 1e-9)
+          << enum_name(kBlendModeNames, mode) << " " << f;
   }
 }
 

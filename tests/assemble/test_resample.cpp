@@ -16,8 +16,7 @@ TEST(Resample, StretchesEvenlyWithSlerp) {
   const Motion m = arm_motion({0.0, 0.4, 0.8});
   const Motion r = resample_path(m, {0, 1, 2}, 5);
   ASSERT_EQ(r.frame_count, 5);
-  for (int i = 0; i < 5; ++i)
-    EXPECT_NEAR(glm::angle(r.rotation(i, 1)), 0.2 * i, 1e-12) << i;
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(glm::angle(r.rotation(i, 1)), 0.2 * i, 1e-12) << i;
 }
 
 TEST(Resample, SqueezesAndFollowsThePathOrder) {

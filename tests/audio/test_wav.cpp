@@ -79,12 +79,11 @@ std::string fmt_chunk(const Fmt& f) {
   le16(b, align);
   le16(b, f.bits);
   if (f.tag == 0xFFFE) {
-    le16(b, 22);        // cbSize
-    le16(b, f.bits);    // valid bits
-    le32(b, 0);         // channel mask
+    le16(b, 22);      // cbSize
+    le16(b, f.bits);  // valid bits
+    le32(b, 0);       // channel mask
     le16(b, f.subformat);
-    const unsigned char tail[14] = {0x00, 0x00, 0x00, 0x00, 0x10, 0x00, 0x80,
-                                    0x00, 0x00, 0xAA, 0x00, 0x38, 0x9B, 0x71};
+    const unsigned char tail[14] = {0x00, 0x00, 0x00, 0x00, 0x10, 0x00, 0x80, 0x00, 0x00, 0xAA, 0x00, 0x38, 0x9B, 0x71};
     b.append(reinterpret_cast<const char*>(tail), 14);
   }
   return chunk("fmt ", b);
@@ -405,7 +404,6 @@ TEST(Wav, WritePcm16RoundTrip) {
   for (std::size_t i = 0; i < 1001; ++i) ASSERT_EQ(b.samples[i], a.samples[i]) << i;
   EXPECT_FLOAT_EQ(b.samples[1001], 32767.0f / 32768.0f);
   EXPECT_FLOAT_EQ(b.samples[1002], -1.0f);
-
 }
 
 TEST(Wav, WritePcm16HeaderByHand) {
@@ -417,8 +415,8 @@ TEST(Wav, WritePcm16HeaderByHand) {
   a.samples = {0.5f, -1.0f};
   gmg::audio::write_wav_pcm16(dir.file("two.wav"), a);
   const std::string expected = std::string("RIFF") + std::string("\x28\0\0\0", 4) + "WAVEfmt " +
-                               std::string("\x10\0\0\0\x01\0\x01\0\x40\x1f\0\0\x80\x3e\0\0\x02\0\x10\0", 20) +
-                               "data" + std::string("\x04\0\0\0\0\x40\0\x80", 8);
+                               std::string("\x10\0\0\0\x01\0\x01\0\x40\x1f\0\0\x80\x3e\0\0\x02\0\x10\0", 20) + "data" +
+                               std::string("\x04\0\0\0\0\x40\0\x80", 8);
   std::ifstream in(dir.file("two.wav"), std::ios::binary);
   const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(written, expected);

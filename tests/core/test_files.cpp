@@ -25,7 +25,10 @@ std::size_t entries_in(const std::filesystem::path& dir) {
 
 TEST(Files, ReadReturnsEveryByte) {
   TempDir dir;
-  const std::string bytes("a\r\n\0\xFF\xEF\xBB\xBF" "z", 9);
+  const std::string bytes(
+      "a\r\n\0\xFF\xEF\xBB\xBF"
+      "z",
+      9);
   write_text(dir.file("b.bin"), bytes);
   EXPECT_EQ(read_file_bytes(dir.file("b.bin")), bytes);
   write_text(dir.file("empty"), "");
@@ -44,8 +47,7 @@ TEST(Files, ReadErrorsHaveOneWording) {
   TempDir dir;
   const std::string missing = dir.file("x.wav");
   EXPECT_EQ(error_of([&] { read_file_bytes(missing); }), missing + ": cannot open (No such file or directory)");
-  EXPECT_EQ(error_of([&] { read_file_bytes(dir.path().string()); }),
-            dir.path().string() + ": is a folder, not a file");
+  EXPECT_EQ(error_of([&] { read_file_bytes(dir.path().string()); }), dir.path().string() + ": is a folder, not a file");
   const std::string below_file = dir.file("x.wav") + "/y";
   write_text(dir.file("x.wav"), "RIFF");
   EXPECT_EQ(error_of([&] { read_file_bytes(below_file); }), below_file + ": cannot open (Not a directory)");
@@ -56,7 +58,8 @@ TEST(Files, AtomicWriteReplacesTheFile) {
   const std::string path = dir.file("out.txt");
   write_file_atomically(path, [](std::ostream& os) { os << "first"; });
   EXPECT_EQ(read_file_bytes(path), "first");
-  write_file_atomically(path, [](std::ostream& os) { os << "second\r\n"; }, true);
+  write_file_atomically(
+      path, [](std::ostream& os) { os << "second\r\n"; }, true);
   EXPECT_EQ(read_file_bytes(path), "second\r\n");
   EXPECT_EQ(entries_in(dir.path()), 1u);  // no temporary file left beside it
 }

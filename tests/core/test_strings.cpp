@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -33,7 +33,10 @@ TEST(Strings, IsAsciiSpace) {
 
 TEST(Strings, AsciiLowerLeavesOtherBytes) {
   EXPECT_EQ(ascii_lower("AbC-XyZ 09"), "abc-xyz 09");
-  EXPECT_EQ(ascii_lower("\xC3\x84" "B"), "\xC3\x84" "b");  // U+00C4 stays as it is
+  EXPECT_EQ(ascii_lower("\xC3\x84"
+                        "B"),
+            "\xC3\x84"
+            "b");  // U+00C4 stays as it is
   EXPECT_EQ(ascii_lower(""), "");
   EXPECT_EQ(ascii_lower("@[`{"), "@[`{");  // the neighbours of A-Z and a-z
 }
@@ -61,7 +64,7 @@ TEST(Strings, SplitLines) {
   EXPECT_EQ(split_lines("a\n\n"), (Lines{"a", ""}));
   EXPECT_EQ(split_lines("\n"), (Lines{""}));
   EXPECT_EQ(split_lines(""), Lines{});
-  EXPECT_EQ(split_lines("a\r"), (Lines{"a"}));      // a final CR of a CRLF file cut short
+  EXPECT_EQ(split_lines("a\r"), (Lines{"a"}));        // a final CR of a CRLF file cut short
   EXPECT_EQ(split_lines("a\rb\n"), (Lines{"a\rb"}));  // only a line's last CR goes
 }
 
@@ -76,7 +79,10 @@ TEST(Strings, Utf8BomNeedsAllThreeBytes) {
 
   EXPECT_EQ(strip_utf8_bom("\xEF\xBB\xBFHIERARCHY"), "HIERARCHY");
   EXPECT_EQ(strip_utf8_bom("\xEF\xBB\xBF"), "");
-  EXPECT_EQ(strip_utf8_bom("\xEF\xBB" "x"), "\xEF\xBB" "x");
+  EXPECT_EQ(strip_utf8_bom("\xEF\xBB"
+                           "x"),
+            "\xEF\xBB"
+            "x");
   EXPECT_EQ(strip_utf8_bom("\xEF\xBF\xBD"), "\xEF\xBF\xBD");
   EXPECT_EQ(strip_utf8_bom("HIERARCHY"), "HIERARCHY");
 }
@@ -135,17 +141,17 @@ TEST(Strings, ToValidUtf8) {
   const std::string r = kReplacement;
   EXPECT_EQ(to_valid_utf8("plain ascii"), "plain ascii");
   EXPECT_EQ(to_valid_utf8("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80"), "caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80");
-  EXPECT_EQ(to_valid_utf8("caf\xE9"), "caf" + r);                 // Latin-1 e-acute
+  EXPECT_EQ(to_valid_utf8("caf\xE9"), "caf" + r);  // Latin-1 e-acute
   EXPECT_EQ(to_valid_utf8("\xE9t\xE9"), r + "t" + r);
-  EXPECT_EQ(to_valid_utf8("\xC0\xAF"), r + r);                    // overlong "/"
-  EXPECT_EQ(to_valid_utf8("\xE0\x80\xAF"), r + r + r);            // overlong "/", 3 bytes
-  EXPECT_EQ(to_valid_utf8("\xF0\x80\x80\xAF"), r + r + r + r);    // overlong "/", 4 bytes
-  EXPECT_EQ(to_valid_utf8("\xED\xA0\x80"), r + r + r);            // surrogate U+D800
-  EXPECT_EQ(to_valid_utf8("\xED\x9F\xBF"), "\xED\x9F\xBF");       // U+D7FF, just below
+  EXPECT_EQ(to_valid_utf8("\xC0\xAF"), r + r);                       // overlong "/"
+  EXPECT_EQ(to_valid_utf8("\xE0\x80\xAF"), r + r + r);               // overlong "/", 3 bytes
+  EXPECT_EQ(to_valid_utf8("\xF0\x80\x80\xAF"), r + r + r + r);       // overlong "/", 4 bytes
+  EXPECT_EQ(to_valid_utf8("\xED\xA0\x80"), r + r + r);               // surrogate U+D800
+  EXPECT_EQ(to_valid_utf8("\xED\x9F\xBF"), "\xED\x9F\xBF");          // U+D7FF, just below
   EXPECT_EQ(to_valid_utf8("\xF4\x8F\xBF\xBF"), "\xF4\x8F\xBF\xBF");  // U+10FFFF
-  EXPECT_EQ(to_valid_utf8("\xF4\x90\x80\x80"), r + r + r + r);    // beyond U+10FFFF
-  EXPECT_EQ(to_valid_utf8("a\xE2\x82"), "a" + r + r);             // cut short at the end
-  EXPECT_EQ(to_valid_utf8("\x80"), r);                            // lone continuation byte
+  EXPECT_EQ(to_valid_utf8("\xF4\x90\x80\x80"), r + r + r + r);       // beyond U+10FFFF
+  EXPECT_EQ(to_valid_utf8("a\xE2\x82"), "a" + r + r);                // cut short at the end
+  EXPECT_EQ(to_valid_utf8("\x80"), r);                               // lone continuation byte
   EXPECT_EQ(to_valid_utf8(std::string("a\0b", 3)), std::string("a\0b", 3));
 }
 

@@ -32,8 +32,8 @@ inline Motion line_motion(const std::vector<double>& x) {
   Skeleton sk;
   Joint root;
   root.name = "root";
-  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation, Channel::Xrotation,
-                   Channel::Yrotation};
+  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition,
+                   Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
   Joint hand;
   hand.name = "hand";
   hand.parent = 0;

@@ -54,17 +54,18 @@ TEST(GraphRealData, ScottHasOnsetAndKeywordNodesZeggsOnsetAndBreakOnly) {
   GMG_REQUIRE_SHARED_DATA();
   const std::string d = gmg::testing::shared_data_dir();
   Config cfg;
-  const MotionGraph scott = graph_build_from_files(
-      {{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
-      cfg);
+  const MotionGraph scott =
+      graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh",
+                               {d + "/beat2_scott/2_scott_0_1_1.wav", d + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
+                             cfg);
   const GraphStats s = graph_stats(scott);
   EXPECT_EQ(s.frames, 1906);
   EXPECT_EQ(s.onset_nodes, 115);  // librosa's count for this recording (reference_onsets)
   EXPECT_GT(s.keyword_nodes, 20);
   EXPECT_GE(s.break_nodes, 1);
   EXPECT_GT(s.unnatural_edges, 0);
-  const MotionGraph zeggs = graph_build_from_files(
-      {{d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}}, cfg);
+  const MotionGraph zeggs =
+      graph_build_from_files({{d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}}, cfg);
   const GraphStats z = graph_stats(zeggs);
   EXPECT_EQ(z.frames, 2065);
   EXPECT_EQ(z.keyword_nodes, 0);
@@ -73,10 +74,11 @@ TEST(GraphRealData, ScottHasOnsetAndKeywordNodesZeggsOnsetAndBreakOnly) {
   EXPECT_GE(z.break_nodes, 1);
   EXPECT_TRUE(zeggs.node(2064).kinds & kBreakNode);
   // Two clips with different skeletons cannot share a graph.
-  EXPECT_THROW(graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", ""}},
-                                       {d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}},
-                                      cfg),
-               Error);
+  EXPECT_THROW(
+      graph_build_from_files({{d + "/beat2_scott/2_scott_0_1_1.bvh", {d + "/beat2_scott/2_scott_0_1_1.wav", ""}},
+                              {d + "/zeggs/067_Speech_2_x_1_0.bvh", {d + "/zeggs/067_Speech_2_x_1_0.wav", ""}}},
+                             cfg),
+      Error);
 }
 
 }  // namespace

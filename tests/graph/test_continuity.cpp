@@ -106,8 +106,10 @@ TEST(Continuity, NoTwoTransitionsNearEachOtherOnAStillPose) {
     for (std::size_t j = 0; j < i; ++j) {
       if (edges[i].from == edges[j].from) continue;  // same left frame: pruning 1 governs those
       const bool near = std::abs(edges[i].from - edges[j].from) <= 10 && std::abs(edges[i].to - edges[j].to) <= 10;
-      const bool near_reverse = std::abs(edges[j].from - edges[i].to) <= 10 && std::abs(edges[j].to - edges[i].from) <= 10;
-      EXPECT_FALSE(near || near_reverse) << edges[j].from << "->" << edges[j].to << " vs " << edges[i].from << "->" << edges[i].to;
+      const bool near_reverse =
+          std::abs(edges[j].from - edges[i].to) <= 10 && std::abs(edges[j].to - edges[i].from) <= 10;
+      EXPECT_FALSE(near || near_reverse) << edges[j].from << "->" << edges[j].to << " vs " << edges[i].from << "->"
+                                         << edges[i].to;
     }
 }
 

@@ -15,7 +15,7 @@ TEST(Features, PoseDistanceWeighsPositionAndVelocity) {
   PoseFeatures f;
   f.positions = Eigen::MatrixXd::Zero(6, 2);
   f.velocities = Eigen::MatrixXd::Zero(6, 2);
-  f.positions.col(0) << 0, 0, 0, 3, 4, 0;  // joint 1 at (3, 4, 0): 5 away from frame 1's origin
+  f.positions.col(0) << 0, 0, 0, 3, 4, 0;   // joint 1 at (3, 4, 0): 5 away from frame 1's origin
   f.velocities.col(1) << 0, 0, 0, 1, 2, 2;  // velocity difference of length 3
   GraphParams p;
   EXPECT_DOUBLE_EQ(pose_distance(f, 0, 1, p), 5.0 + 3.0);

@@ -68,9 +68,8 @@ TEST(Metrics, SynIsTheMeanSpeedDifference) {
 
 TEST(Metrics, ConstantVelocityHasZeroJerkAndAcceleration) {
   // Dyadic steps keep every position exact, so any non-zero result is a formula error.
-  const Eigen::MatrixXd m = make_motion(40, 3, [](int f, int j) {
-    return Eigen::Vector3d(0.25 * f + j, -0.125 * f, 0.5 * j * f + 3.0);
-  });
+  const Eigen::MatrixXd m =
+      make_motion(40, 3, [](int f, int j) { return Eigen::Vector3d(0.25 * f + j, -0.125 * f, 0.5 * j * f + 3.0); });
   EXPECT_NEAR(metric_jerk(m, 30.0), 0.0, 1e-9);
   EXPECT_NEAR(metric_acceleration(m, 30.0), 0.0, 1e-9);
   // And a non-linear motion is not 0 (guards against a metric that always returns 0).
@@ -127,7 +126,8 @@ TEST(Metrics, DivCountsDirectionChanges) {
     p += ((k - 1) / 2 % 2 == 0) ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0);
     stairs.push_back(p);
   }
-  const Eigen::MatrixXd staircase = make_motion(201, 1, [&](int f, int) { return stairs[static_cast<std::size_t>(f)]; });
+  const Eigen::MatrixXd staircase =
+      make_motion(201, 1, [&](int f, int) { return stairs[static_cast<std::size_t>(f)]; });
   EXPECT_NEAR(metric_div(staircase, 30.0, params), 0.5, 0.01);
 
   // A circle sampled at 60 frames per turn turns 6 degrees a frame: smooth, never "large".
@@ -137,9 +137,8 @@ TEST(Metrics, DivCountsDirectionChanges) {
   EXPECT_EQ(metric_div(circle, 30.0, params), 0.0);
 
   // A hexagon traversed one side per frame turns 60 degrees every frame: above 45, below 90.
-  const Eigen::MatrixXd hexagon = make_motion(60, 1, [](int f, int) {
-    return Eigen::Vector3d(std::cos(2 * kPi * f / 6), std::sin(2 * kPi * f / 6), 0);
-  });
+  const Eigen::MatrixXd hexagon = make_motion(
+      60, 1, [](int f, int) { return Eigen::Vector3d(std::cos(2 * kPi * f / 6), std::sin(2 * kPi * f / 6), 0); });
   EXPECT_DOUBLE_EQ(metric_div(hexagon, 30.0, params), 1.0);
   MetricParams wide = params;
   wide.div_angle_deg = 90.0;
@@ -178,7 +177,8 @@ TEST(Metrics, MotionBeatsAreSpeedMinima) {
   ASSERT_EQ(held.size(), 1u);
   EXPECT_NEAR(held[0], 30.0 / fps, 1e-12);
 
-  EXPECT_TRUE(motion_beats(make_motion(30, 2, [](int, int j) { return Eigen::Vector3d(j, 1, 2); }), fps, params).empty());
+  EXPECT_TRUE(
+      motion_beats(make_motion(30, 2, [](int, int j) { return Eigen::Vector3d(j, 1, 2); }), fps, params).empty());
 }
 
 TEST(Metrics, BeatConsistencyFallsAsAudioBeatsShift) {
@@ -220,10 +220,10 @@ TEST(Metrics, HellingerBounds) {
   EXPECT_EQ(metric_hellinger_speed(constant_speed(1000), constant_speed(80), fps, {}, params), 0.0);
 
   // Half of gen's mass where all of truth's is: H = sqrt(1 - sqrt(0.5)).
-  const Eigen::MatrixXd half = make_motion(60, 2, [&](int f, int j) {
-    return Eigen::Vector3d((j == 0 ? 5.5 : 20.5) * f / fps, j, 0);
-  });
-  EXPECT_NEAR(metric_hellinger_speed(half, constant_speed(5.5, 2), fps, {}, params), std::sqrt(1 - std::sqrt(0.5)), 1e-12);
+  const Eigen::MatrixXd half =
+      make_motion(60, 2, [&](int f, int j) { return Eigen::Vector3d((j == 0 ? 5.5 : 20.5) * f / fps, j, 0); });
+  EXPECT_NEAR(metric_hellinger_speed(half, constant_speed(5.5, 2), fps, {}, params), std::sqrt(1 - std::sqrt(0.5)),
+              1e-12);
   // Joint selection: joint 0 matches, joint 1 does not.
   EXPECT_EQ(metric_hellinger_speed(half, constant_speed(5.5, 2), fps, {0}, params), 0.0);
   EXPECT_DOUBLE_EQ(metric_hellinger_speed(half, constant_speed(5.5, 2), fps, {1}, params), 1.0);

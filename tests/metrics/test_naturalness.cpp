@@ -62,12 +62,13 @@ TEST(Naturalness, AJumpAndAGlideShow) {
   // strictly below the reference's 99.9th percentile and only the jump counts.
   const Eigen::MatrixXd ref = walker(200, 0.0, 10.2);
   const NaturalnessReference r = naturalness_reference(ref, 30.0);
-  Eigen::MatrixXd jumpy = walker(200, 3.0, 10.0);  // the root glides at 90 cm/s against a still one
+  Eigen::MatrixXd jumpy = walker(200, 3.0, 10.0);       // the root glides at 90 cm/s against a still one
   for (int t = 100; t < 200; ++t) jumpy(t, 3) += 15.0;  // the hand jumps 15 cm at frame 100
   const Naturalness n = naturalness(jumpy, 30.0, r);
-  EXPECT_NEAR(n.jump_ratio, (Eigen::Vector3d(jumpy(100, 3) - jumpy(99, 3) - 3.0, jumpy(100, 4) - jumpy(99, 4), 0)).norm() /
-                                r.step_p999,
-              1e-9);
+  EXPECT_NEAR(
+      n.jump_ratio,
+      (Eigen::Vector3d(jumpy(100, 3) - jumpy(99, 3) - 3.0, jumpy(100, 4) - jumpy(99, 4), 0)).norm() / r.step_p999,
+      1e-9);
   EXPECT_GT(n.jump_ratio, 3.0);
   EXPECT_NEAR(n.step_share, 1.0 / 199, 1e-12);
   EXPECT_GT(n.jerk_ratio, 1.5);

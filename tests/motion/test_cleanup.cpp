@@ -96,7 +96,9 @@ TEST(Cleanup, AppliedToReferencesWhenConfigured) {
       EXPECT_NEAR(glm::length(g.motion.rotation(f, j) * axis - axis), 0.0, 1e-9);
   }
   config_set(cfg, "lock_joints", "Nope");
-  EXPECT_EQ(testing::error_of([&] { graph_build_from_files({{dir.file("ref.bvh"), {dir.file("ref.wav"), ""}}}, cfg); }),
+  EXPECT_EQ(testing::error_of([&] {
+              graph_build_from_files({{dir.file("ref.bvh"), {dir.file("ref.wav"), ""}}}, cfg);
+            }),
             dir.file("ref.bvh") + ": clean-up joint 'Nope' is not in the skeleton");
 }
 

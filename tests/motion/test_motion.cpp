@@ -1,6 +1,6 @@
 // Tests of engine/motion/motion: forward kinematics, skeleton comparison.
-#include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include <string>
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "engine/core/error.h"
 #include "engine/core/math.h"

@@ -13,14 +13,15 @@ namespace gmg::testing {
 
 // A graph of n frames in one natural chain, with given onset/keyword/break nodes and extra
 // unnatural edges. The motion is a rest pose (search does not look at it).
-inline MotionGraph chain_graph(int n, const std::vector<int>& onsets, const std::vector<std::pair<int, std::string>>& keywords,
-                        const std::vector<Transition>& jumps) {
+inline MotionGraph chain_graph(int n, const std::vector<int>& onsets,
+                               const std::vector<std::pair<int, std::string>>& keywords,
+                               const std::vector<Transition>& jumps) {
   MotionGraph g;
   Skeleton sk;
   Joint root;
   root.name = "root";
-  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation, Channel::Xrotation,
-                   Channel::Yrotation};
+  root.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition,
+                   Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
   sk.joints = {root};
   g.motion = motion_rest(sk, 30.0, n);
   for (int f = 0; f < n; ++f) g.motion.translations[static_cast<std::size_t>(f)] = glm::dvec3(f, 0, 0);
@@ -32,9 +33,11 @@ inline MotionGraph chain_graph(int n, const std::vector<int>& onsets, const std:
     g.graph[static_cast<std::size_t>(f)].keyword = w;
   }
   g.graph[static_cast<std::size_t>(n - 1)].kinds |= kBreakNode;
-  for (int f = 0; f + 1 < n; ++f) boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+  for (int f = 0; f + 1 < n; ++f)
+    boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
   for (const Transition& t : jumps)
-    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false}, g.graph);
+    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false},
+                    g.graph);
   return g;
 }
 

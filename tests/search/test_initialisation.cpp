@@ -33,8 +33,8 @@ TEST(Initialisation, RanksKeyNodesByFeatureDistance) {
   p.l_feat = 2;
   p.w_full = {1, 1};
   p.l_npaths = 3;
-  const std::vector<Subsequence> subs = {{0, 20, Termination::Rhythm, ""}, {20, 20, Termination::Rhythm, ""},
-                                         {40, 30, Termination::Rhythm, ""}};
+  const std::vector<Subsequence> subs = {
+      {0, 20, Termination::Rhythm, ""}, {20, 20, Termination::Rhythm, ""}, {40, 30, Termination::Rhythm, ""}};
   StartNodeIndex index = initialisation_prepare(g, subs, p);
   EXPECT_EQ(index.keys, (std::vector<int>{0, 10, 20, 40, 70, 79}));  // 79: the clip end (break)
   EXPECT_NEAR(feature_distance(index, 0, 0, p), std::sqrt(200.0) + 0.5, 1e-12);

@@ -97,8 +97,7 @@ TEST(TextJson, MissingFileUsesTheReaderWording) {
 
 TEST(TextJson, MissingFieldsAndBadTimes) {
   TempDir dir;
-  write_text(dir.file("m.json"),
-             R"([{"alternatives": [{"words": [{"start_time": "1s", "word": "x"}]}]}])");
+  write_text(dir.file("m.json"), R"([{"alternatives": [{"words": [{"start_time": "1s", "word": "x"}]}]}])");
   std::string msg = error_of([&] { tx::read_google_json(dir.file("m.json")); });
   EXPECT_CONTAINS(msg, "m.json");
   EXPECT_CONTAINS(msg, "[0].alternatives[0].words[0]");

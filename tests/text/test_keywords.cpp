@@ -31,7 +31,7 @@ TEST(TextKeywords, NormalizeWord) {
   EXPECT_EQ(tx::normalize_word("'quoted'"), "quoted");
   EXPECT_EQ(tx::normalize_word("-dash-"), "dash");
   EXPECT_EQ(tx::normalize_word("a--b"), "a-b");
-  EXPECT_EQ(tx::normalize_word("Don\xE2\x80\x99t"), "don't");  // typographic apostrophe
+  EXPECT_EQ(tx::normalize_word("Don\xE2\x80\x99t"), "don't");         // typographic apostrophe
   EXPECT_EQ(tx::normalize_word("\xE2\x80\x9CHi\xE2\x80\x9D"), "hi");  // curly quotes
   EXPECT_EQ(tx::normalize_word("Caf\xC3\xA9."), "caf\xC3\xA9");
   EXPECT_EQ(tx::normalize_word("#"), "");
@@ -61,9 +61,8 @@ TEST(TextKeywords, RunOfIdenticalKeywordsMarksFirst) {
 
 TEST(TextKeywords, OtherWordBreaksRunAndNonKeywordsIgnored) {
   const auto lex = lexicon_of({"very", "big"});
-  std::vector<tx::Word> words = {{0, 0.1, "very"}, {0.2, 0.3, "big"}, {0.4, 0.5, "very"},
-                                 {0.6, 0.7, "nice"}, {0.8, 0.9, "very"}, {1.0, 1.1, "#"},
-                                 {1.2, 1.3, "very"}};
+  std::vector<tx::Word> words = {{0, 0.1, "very"},   {0.2, 0.3, "big"}, {0.4, 0.5, "very"}, {0.6, 0.7, "nice"},
+                                 {0.8, 0.9, "very"}, {1.0, 1.1, "#"},   {1.2, 1.3, "very"}};
   auto ev = tx::detect_keywords(words, lex);
   ASSERT_EQ(ev.size(), 4u);
   EXPECT_DOUBLE_EQ(ev[0].time, 0.0);
@@ -90,8 +89,8 @@ TEST(TextKeywords, PhraseOverWordsAndInsideOneTsvWord) {
 
   // Longest first even when the shorter entry comes first in the lexicon and shares the first token.
   const auto overlapping = lexicon_of({"on", "other", "on the other hand"});
-  std::vector<tx::Word> hand = {{2.0, 2.1, "On"}, {2.1, 2.2, "the"}, {2.2, 2.5, "other"},
-                                {2.5, 2.8, "hand,"}, {3.0, 3.2, "on"}};
+  std::vector<tx::Word> hand = {
+      {2.0, 2.1, "On"}, {2.1, 2.2, "the"}, {2.2, 2.5, "other"}, {2.5, 2.8, "hand,"}, {3.0, 3.2, "on"}};
   auto ev3 = tx::detect_keywords(hand, overlapping);
   ASSERT_EQ(ev3.size(), 2u);
   EXPECT_EQ(ev3[0].keyword, "on the other hand");
@@ -105,8 +104,7 @@ TEST(TextKeywords, PhraseOverWordsAndInsideOneTsvWord) {
 }
 
 TEST(TextKeywords, KeywordFramesRoundDropOutsideAndDedupe) {
-  std::vector<tx::KeywordEvent> ev = {{1.0166, "a"}, {1.0167, "b"}, {1.02, "c"},
-                                      {2.0, "d"},    {-0.2, "e"},   {100.0, "f"}};
+  std::vector<tx::KeywordEvent> ev = {{1.0166, "a"}, {1.0167, "b"}, {1.02, "c"}, {2.0, "d"}, {-0.2, "e"}, {100.0, "f"}};
   auto frames = tx::keyword_frames(ev, 30.0, 1000);
   // 1.0166 * 30 = 30.498 -> 30; 1.0167 * 30 = 30.501 -> 31; 1.02 * 30 = 30.6 -> 31 (dropped).
   // -0.2 s and 100 s (frame 3000) fall outside [0, 1000): dropped.
@@ -124,8 +122,7 @@ TEST(TextKeywords, KeywordFramesRoundDropOutsideAndDedupe) {
 
 TEST(TextKeywords, LoadLexiconFile) {
   TempDir dir;
-  write_text(dir.file("k.txt"),
-             "\xEF\xBB\xBF# comment\r\nBig\r\n\r\n  on the Other hand  # phrase\r\nbig\r\n");
+  write_text(dir.file("k.txt"), "\xEF\xBB\xBF# comment\r\nBig\r\n\r\n  on the Other hand  # phrase\r\nbig\r\n");
   auto lex = tx::load_lexicon(dir.file("k.txt"));
   EXPECT_EQ(lex.size(), 2u);
   EXPECT_TRUE(lex.contains("big"));

@@ -20,12 +20,23 @@ using gmg::text::detail::read_text_file;
 
 TEST(TextFile, Utf8PassesThroughAndLosesItsBom) {
   EXPECT_EQ(decode_to_utf8("caf\xC3\xA9\r\n", "t"), "caf\xC3\xA9\r\n");
-  EXPECT_EQ(decode_to_utf8("\xEF\xBB\xBF" "abc", "t"), "abc");
+  EXPECT_EQ(decode_to_utf8("\xEF\xBB\xBF"
+                           "abc",
+                           "t"),
+            "abc");
   EXPECT_EQ(decode_to_utf8("\xEF\xBB\xBF", "t"), "");
   EXPECT_EQ(decode_to_utf8("", "t"), "");
   // One or two bytes of a mark are not a mark: the text is left alone.
-  EXPECT_EQ(decode_to_utf8("\xEF\xBB" "a", "t"), "\xEF\xBB" "a");
-  EXPECT_EQ(decode_to_utf8("\xEF" "ab", "t"), "\xEF" "ab");
+  EXPECT_EQ(decode_to_utf8("\xEF\xBB"
+                           "a",
+                           "t"),
+            "\xEF\xBB"
+            "a");
+  EXPECT_EQ(decode_to_utf8("\xEF"
+                           "ab",
+                           "t"),
+            "\xEF"
+            "ab");
 }
 
 TEST(TextFile, Utf16WithMark) {
@@ -41,7 +52,9 @@ TEST(TextFile, Utf16WithMark) {
 TEST(TextFile, Utf16UnpairedSurrogatesBecomeReplacement) {
   // A high surrogate followed by "A", and a lone low surrogate.
   EXPECT_EQ(decode_to_utf8(std::string("\xFF\xFE\x3D\xD8\x41\x00\x00\xDE", 8), "t"),
-            "\xEF\xBF\xBD" "A" "\xEF\xBF\xBD");
+            "\xEF\xBF\xBD"
+            "A"
+            "\xEF\xBF\xBD");
   // A high surrogate at the very end.
   EXPECT_EQ(decode_to_utf8(std::string("\xFF\xFE\x41\x00\x3D\xD8", 6), "t"), "A\xEF\xBF\xBD");
 }

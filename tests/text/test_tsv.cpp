@@ -16,8 +16,7 @@ using gmg::testing::TempDir;
 using gmg::testing::write_text;
 namespace tx = gmg::text;
 
-std::vector<tx::Word> tsv_from(const TempDir& dir, const std::string& content,
-                               const std::string& name = "t.tsv") {
+std::vector<tx::Word> tsv_from(const TempDir& dir, const std::string& content, const std::string& name = "t.tsv") {
   write_text(dir.file(name), content);
   return tx::read_tsv(dir.file(name));
 }
@@ -44,7 +43,9 @@ TEST(TextTsv, WordWithSpacesAndTabsKeepsEverythingAfterSecondTab) {
 
 TEST(TextTsv, CrlfBomBlankLinesAndLaughter) {
   TempDir dir;
-  auto words = tsv_from(dir, "\xEF\xBB\xBF" "0.1\t0.2\tHi\r\n\r\n   \r\n0.3\t0.6\t#\r\n0.7\t0.8\tthere\r\n");
+  auto words = tsv_from(dir,
+                        "\xEF\xBB\xBF"
+                        "0.1\t0.2\tHi\r\n\r\n   \r\n0.3\t0.6\t#\r\n0.7\t0.8\tthere\r\n");
   ASSERT_EQ(words.size(), 3u);
   EXPECT_EQ(words[0].text, "Hi");  // no BOM bytes, no CR
   EXPECT_DOUBLE_EQ(words[0].start, 0.1);

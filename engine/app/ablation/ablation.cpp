@@ -18,8 +18,9 @@
 namespace gmg {
 
 std::vector<TimeFold> time_folds(int frames, int k, int min_frames) {
-  if (k < 2) throw Error("ablation: --folds must be at least 2 (one part is the test, the rest the reference), got " +
-                         std::to_string(k));
+  if (k < 2)
+    throw Error("ablation: --folds must be at least 2 (one part is the test, the rest the reference), got " +
+                std::to_string(k));
   std::vector<TimeFold> folds;
   auto bound = [&](int i) { return static_cast<int>(std::lround(static_cast<double>(i) * frames / k)); };
   for (int i = 0; i < k; ++i) {
@@ -27,9 +28,9 @@ std::vector<TimeFold> time_folds(int frames, int k, int min_frames) {
     f.test_first = bound(i);
     f.test_end = bound(i + 1);
     if (f.test_end - f.test_first < min_frames)
-      throw Error("ablation: " + std::to_string(k) + " folds of " + std::to_string(frames) + " frames leave a part of " +
-                  std::to_string(f.test_end - f.test_first) + " frames; each part needs at least " +
-                  std::to_string(min_frames) + " (use fewer folds)");
+      throw Error("ablation: " + std::to_string(k) + " folds of " + std::to_string(frames) +
+                  " frames leave a part of " + std::to_string(f.test_end - f.test_first) +
+                  " frames; each part needs at least " + std::to_string(min_frames) + " (use fewer folds)");
     if (f.test_first > 0) f.reference.emplace_back(0, f.test_first);
     if (f.test_end < frames) f.reference.emplace_back(f.test_end, frames);
     folds.push_back(f);
@@ -109,7 +110,8 @@ struct Prepared {
   SpeechEvents test_events;
 };
 
-Prepared prepare_graph(const Recording& rec, const FoldData& fold, const GraphParams& gp, const text::Lexicon& lexicon) {
+Prepared prepare_graph(const Recording& rec, const FoldData& fold, const GraphParams& gp,
+                       const text::Lexicon& lexicon) {
   std::vector<ClipEvents> clips;
   for (const auto& [a, b] : fold.split.reference) {
     const double t0 = a / fold.fps, t1 = b / fold.fps;
@@ -188,7 +190,8 @@ Plan random_chunks_plan(const MotionGraph& g, int length, int chunk, std::mt1993
     std::vector<int> starts;
     for (int f = 0; f < g.frame_count(); ++f)
       if (fits_in_run(g, f, len)) starts.push_back(f);
-    if (starts.empty()) throw Error("ablation: the reference has no continuous run of " + std::to_string(len) + " frames");
+    if (starts.empty())
+      throw Error("ablation: the reference has no continuous run of " + std::to_string(len) + " frames");
     const int s = starts[random_below(rng, starts.size())];
     PlannedSegment seg;
     seg.sub = {covered, len, Termination::Rhythm, ""};
@@ -230,11 +233,20 @@ AblationScore score(const Motion& m, const Plan& plan, const FoldData& fold, con
 Config setup_config(AblationSetup setup, const Config& base) {
   Config c = base;
   switch (setup) {
-    case AblationSetup::WeakDetection: c.graph.min_onset_strength = 0.0; break;
-    case AblationSetup::WeakPruning: c.graph.l_pn = 1; break;
-    case AblationSetup::WeakInitialization: c.search.init = InitMode::Random; break;
-    case AblationSetup::NoFallback: c.search.fallbacks = false; break;
-    default: break;
+    case AblationSetup::WeakDetection:
+      c.graph.min_onset_strength = 0.0;
+      break;
+    case AblationSetup::WeakPruning:
+      c.graph.l_pn = 1;
+      break;
+    case AblationSetup::WeakInitialization:
+      c.search.init = InitMode::Random;
+      break;
+    case AblationSetup::NoFallback:
+      c.search.fallbacks = false;
+      break;
+    default:
+      break;
   }
   return c;
 }
@@ -264,9 +276,10 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
   const int min_frames = static_cast<int>(std::ceil((2.0 * options.min_shift_s + 1.0) * rec.motion.fps));
   const std::vector<TimeFold> folds = time_folds(rec.motion.frame_count, options.folds, min_frames);
   const text::Lexicon lexicon = lexicon_for(base.graph);
-  constexpr AblationSetup kSetups[] = {AblationSetup::WeakDetection, AblationSetup::WeakPruning,
-                                       AblationSetup::WeakInitialization, AblationSetup::NoFallback,
-                                       AblationSetup::Full, AblationSetup::Contiguous, AblationSetup::RandomChunks};
+  constexpr AblationSetup kSetups[] = {
+      AblationSetup::WeakDetection, AblationSetup::WeakPruning, AblationSetup::WeakInitialization,
+      AblationSetup::NoFallback,    AblationSetup::Full,        AblationSetup::Contiguous,
+      AblationSetup::RandomChunks};
 
   AblationResult result;
   result.folds = static_cast<int>(folds.size());

@@ -64,8 +64,8 @@ struct AblationInputs {
 struct AblationOptions {
   int folds = 3;
   std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5};
-  MetricParams metrics;          // Hellinger binning among others
-  int control_shifts = 8;        // circular shifts of the test audio for the sync control
+  MetricParams metrics;    // Hellinger binning among others
+  int control_shifts = 8;  // circular shifts of the test audio for the sync control
   double min_shift_s = 2.0;
 };
 
@@ -91,8 +91,8 @@ struct TruthSync {
 };
 
 struct AblationResult {
-  std::vector<AblationRow> rows;      // in AblationSetup order
-  std::vector<TruthSync> truth;       // one per fold
+  std::vector<AblationRow> rows;  // in AblationSetup order
+  std::vector<TruthSync> truth;   // one per fold
   int folds = 0, seeds = 0, control_shifts = 0;
   HistogramBins hist_bins = HistogramBins::Overflow;
   double hist_bin_width = 1.0;

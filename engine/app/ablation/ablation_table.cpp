@@ -127,10 +127,10 @@ std::string ablation_markdown(const AblationResult& result) {
          "Shifted sd of the full system: BC " +
          (full ? format("%.3f", column_stats(*full, column("bc_shifted_sd")).mean) : std::string("-")) + ", corr " +
          (full ? format("%.3f", column_stats(*full, column("speech_corr_shifted_sd")).mean) : std::string("-")) + ".\n";
-  out += "The truth itself: BC " + format("%.3f", mean_sd(bc).mean) + " (lift " + format("%+.3f", mean_sd(bc_lift).mean) +
-         ", shifted sd " + format("%.3f", mean_sd(bc_sd).mean) + "), corr " + format("%.3f", mean_sd(corr).mean) +
-         " (lift " + format("%+.3f", mean_sd(corr_lift).mean) + ", shifted sd " + format("%.3f", mean_sd(corr_sd).mean) +
-         ").\n";
+  out += "The truth itself: BC " + format("%.3f", mean_sd(bc).mean) + " (lift " +
+         format("%+.3f", mean_sd(bc_lift).mean) + ", shifted sd " + format("%.3f", mean_sd(bc_sd).mean) + "), corr " +
+         format("%.3f", mean_sd(corr).mean) + " (lift " + format("%+.3f", mean_sd(corr_lift).mean) + ", shifted sd " +
+         format("%.3f", mean_sd(corr_sd).mean) + ").\n";
   return out;
 }
 

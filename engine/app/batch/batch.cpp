@@ -99,9 +99,8 @@ std::vector<BatchReferenceResult> reference_results(const ClipMap& pool, const s
 }
 
 std::size_t pending_count(const std::vector<BatchClipResult>& clips) {
-  return static_cast<std::size_t>(std::count_if(clips.begin(), clips.end(), [](const BatchClipResult& c) {
-    return c.status == BatchClipStatus::Pending;
-  }));
+  return static_cast<std::size_t>(std::count_if(
+      clips.begin(), clips.end(), [](const BatchClipResult& c) { return c.status == BatchClipStatus::Pending; }));
 }
 
 int job_count(const BatchOptions& options) {

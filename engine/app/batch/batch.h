@@ -88,7 +88,7 @@ enum class BatchPairing {
 };
 // The choices of `gmg batch --pairing`, and the names in the summary and progress lines.
 inline constexpr EnumName<BatchPairing> kBatchPairingNames[] = {{BatchPairing::Random, "random"},
-                                                               {BatchPairing::Manifest, "manifest"}};
+                                                                {BatchPairing::Manifest, "manifest"}};
 
 enum class BatchClipStatus {
   Pending,    // not decided yet; never left in a returned summary
@@ -98,10 +98,11 @@ enum class BatchClipStatus {
   Cancelled,  // not started: the run was interrupted
 };
 // The names in summary.csv and summary.json.
-inline constexpr EnumName<BatchClipStatus> kBatchClipStatusNames[] = {
-    {BatchClipStatus::Pending, "pending"}, {BatchClipStatus::Ok, "ok"},
-    {BatchClipStatus::Failed, "failed"},   {BatchClipStatus::Skipped, "skipped"},
-    {BatchClipStatus::Cancelled, "cancelled"}};
+inline constexpr EnumName<BatchClipStatus> kBatchClipStatusNames[] = {{BatchClipStatus::Pending, "pending"},
+                                                                      {BatchClipStatus::Ok, "ok"},
+                                                                      {BatchClipStatus::Failed, "failed"},
+                                                                      {BatchClipStatus::Skipped, "skipped"},
+                                                                      {BatchClipStatus::Cancelled, "cancelled"}};
 
 struct BatchOptions {
   std::vector<std::string> pool_dirs;         // --pool DIR (repeatable)
@@ -127,9 +128,9 @@ struct BatchClipResult {
   BatchClipStatus status = BatchClipStatus::Pending;
   int frames = 0, fallbacks = 0, failures = 0;  // the reenactment's frames and its plan's
                                                 // fallback and failure counts
-  double seconds = 0;        // this clip's own work (speech analysis, search, writing); not the
-                             // graph build and not time spent waiting for it. For a skipped clip,
-                             // frames..seconds are the previous run's (0 when unknown).
+  double seconds = 0;                           // this clip's own work (speech analysis, search, writing); not the
+                                                // graph build and not time spent waiting for it. For a skipped clip,
+                                                // frames..seconds are the previous run's (0 when unknown).
   bool skipped_existing = false;
 };
 
@@ -142,11 +143,11 @@ struct BatchReferenceResult {
 };
 
 struct BatchSummary {
-  std::vector<BatchClipResult> clips;           // sorted by test stem
+  std::vector<BatchClipResult> clips;            // sorted by test stem
   std::vector<BatchReferenceResult> references;  // pool after the blacklist, sorted by stem
   int ok = 0, failed = 0, skipped = 0, cancelled = 0;
-  int blacklisted = 0;       // pool clips removed by the blacklist
-  int jobs = 1;              // worker threads used
+  int blacklisted = 0;  // pool clips removed by the blacklist
+  int jobs = 1;         // worker threads used
   std::uint64_t seed = 0;
   double seconds = 0;        // wall time of the whole run
   double graph_seconds = 0;  // sum of graph build times

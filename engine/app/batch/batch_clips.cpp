@@ -49,8 +49,8 @@ void scan_files(const fs::path& dir, StemMap& out) {
     if (!slot) continue;
     std::string& s = out[p.stem().string()].*slot;
     if (!s.empty())
-      throw Error("clip '" + p.stem().string() + "' has two " + ascii_lower(p.extension().string()) +
-                  " files: " + s + " and " + p.string());
+      throw Error("clip '" + p.stem().string() + "' has two " + ascii_lower(p.extension().string()) + " files: " + s +
+                  " and " + p.string());
     s = p.string();
   }
 }
@@ -104,10 +104,14 @@ ManifestColumns manifest_columns(const CsvRow& header, const std::string& path, 
   for (std::size_t i = 0; i < header.fields.size(); ++i) {
     const std::string h = ascii_lower(trim(header.fields[i]));
     const int idx = static_cast<int>(i);
-    if (h == "stem" || h == "name" || h == "id") c.stem = idx;
-    else if (h == "bvh" || h == "motion") c.bvh = idx;
-    else if (h == "wav" || h == "audio") c.wav = idx;
-    else if (h == "transcript" || h == "tsv" || h == "textgrid") c.transcript = idx;
+    if (h == "stem" || h == "name" || h == "id")
+      c.stem = idx;
+    else if (h == "bvh" || h == "motion")
+      c.bvh = idx;
+    else if (h == "wav" || h == "audio")
+      c.wav = idx;
+    else if (h == "transcript" || h == "tsv" || h == "textgrid")
+      c.transcript = idx;
   }
   if (c.wav < 0 || (pool && c.bvh < 0)) {
     std::string found;

@@ -29,9 +29,7 @@ namespace gmg::batch_internal {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-inline double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // v with `decimals` digits after the point ("1.50"), for progress lines and summary.csv.
 std::string fixed(double v, int decimals);

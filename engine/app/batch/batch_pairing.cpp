@@ -114,8 +114,9 @@ std::map<std::string, std::string> read_pairs(const std::string& path, bool stri
     auto [it, inserted] = out.emplace(row.fields[0], row.fields[1]);
     if (!inserted && it->second != row.fields[1]) {
       if (strict)
-        throw Error(error_at_line(path, row.line, "test clip '" + row.fields[0] + "' is paired twice ('" +
-                                                      it->second + "' and '" + row.fields[1] + "')"));
+        throw Error(error_at_line(
+            path, row.line,
+            "test clip '" + row.fields[0] + "' is paired twice ('" + it->second + "' and '" + row.fields[1] + "')"));
       it->second = row.fields[1];
     }
   }

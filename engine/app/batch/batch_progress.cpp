@@ -10,8 +10,10 @@ namespace gmg::batch_internal {
 
 Progress::Progress(std::ostream& os, BatchProgress mode) : os_(os) {
   if (mode == BatchProgress::Auto) {
-    if (&os == &std::cerr || &os == &std::clog) fd_ = 2;
-    else if (&os == &std::cout) fd_ = 1;
+    if (&os == &std::cerr || &os == &std::clog)
+      fd_ = 2;
+    else if (&os == &std::cout)
+      fd_ = 1;
     terminal_ = fd_ >= 0 && ::isatty(fd_) != 0;
   } else {
     terminal_ = mode == BatchProgress::Terminal;

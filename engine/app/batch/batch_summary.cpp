@@ -121,10 +121,18 @@ void count_statuses(BatchSummary& summary) {
       c.output.clear();
     }
     switch (c.status) {
-      case BatchClipStatus::Ok: ++summary.ok; break;
-      case BatchClipStatus::Failed: ++summary.failed; break;
-      case BatchClipStatus::Skipped: ++summary.skipped; break;
-      default: ++summary.cancelled; break;
+      case BatchClipStatus::Ok:
+        ++summary.ok;
+        break;
+      case BatchClipStatus::Failed:
+        ++summary.failed;
+        break;
+      case BatchClipStatus::Skipped:
+        ++summary.skipped;
+        break;
+      default:
+        ++summary.cancelled;
+        break;
     }
   }
 }
@@ -132,8 +140,8 @@ void count_statuses(BatchSummary& summary) {
 void write_summary_files(const fs::path& out_dir, const BatchSummary& summary, const BatchOptions& options,
                          BatchPairing pairing) {
   write_file_atomically((out_dir / "summary.csv").string(), [&](std::ostream& os) {
-    os << csv_line({"test_stem", "reference_stem", "status", "frames", "fallbacks", "failures", "seconds", "output",
-                    "error"});
+    os << csv_line(
+        {"test_stem", "reference_stem", "status", "frames", "fallbacks", "failures", "seconds", "output", "error"});
     for (const BatchClipResult& c : summary.clips)
       os << csv_line({c.test_stem, c.reference_stem, enum_name(kBatchClipStatusNames, c.status),
                       std::to_string(c.frames), std::to_string(c.fallbacks), std::to_string(c.failures),
@@ -147,8 +155,8 @@ std::string summary_line(const BatchSummary& summary, const fs::path& out_dir) {
   std::ostringstream os;
   os << "batch: " << summary.ok << " ok, " << summary.failed << " failed, " << summary.skipped << " skipped";
   if (summary.cancelled) os << ", " << summary.cancelled << " cancelled (interrupted)";
-  os << " in " << fixed(summary.seconds, 1) << "s (graphs " << fixed(summary.graph_seconds, 1)
-     << "s); summary in " << (out_dir / "summary.csv").string();
+  os << " in " << fixed(summary.seconds, 1) << "s (graphs " << fixed(summary.graph_seconds, 1) << "s); summary in "
+     << (out_dir / "summary.csv").string();
   return os.str();
 }
 

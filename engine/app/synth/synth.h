@@ -34,15 +34,15 @@
 namespace gmg {
 
 struct SynthSpec {
-  double duration_s = 30.0;    // > 0
-  std::uint64_t seed = 1;      // same spec -> byte-identical output
-  double fps = 30.0;           // > 0
-  int sample_rate = 16000;     // >= 8000
-  int joint_count_hint = 0;    // 0 = the default upper-body+legs skeleton (22 joints); larger
-                               // values add finger chains (then face and accessory joints) until
-                               // the skeleton has exactly max(22, joint_count_hint) joints
-  double style = 0.0;          // 0..1: the speaker's style (gesture amplitude, tempo, voice
-                               // pitch, rest pose), so two "speakers" differ
+  double duration_s = 30.0;  // > 0
+  std::uint64_t seed = 1;    // same spec -> byte-identical output
+  double fps = 30.0;         // > 0
+  int sample_rate = 16000;   // >= 8000
+  int joint_count_hint = 0;  // 0 = the default upper-body+legs skeleton (22 joints); larger
+                             // values add finger chains (then face and accessory joints) until
+                             // the skeleton has exactly max(22, joint_count_hint) joints
+  double style = 0.0;        // 0..1: the speaker's style (gesture amplitude, tempo, voice
+                             // pitch, rest pose), so two "speakers" differ
 };
 
 // One syllable of the speech plan.
@@ -59,9 +59,9 @@ struct SynthPhrase {
 };
 
 struct SynthClip {
-  Motion motion;                   // exactly round(duration_s * fps) frames, skeleton synth_skeleton
-  audio::Audio audio;              // exactly round(duration_s * sample_rate) samples
-  std::vector<text::Word> words;   // sorted, inside [0, duration]; times are whole milliseconds
+  Motion motion;                  // exactly round(duration_s * fps) frames, skeleton synth_skeleton
+  audio::Audio audio;             // exactly round(duration_s * sample_rate) samples
+  std::vector<text::Word> words;  // sorted, inside [0, duration]; times are whole milliseconds
   // The plan behind the data (ground truth for tests and benchmarks):
   std::vector<SynthSyllable> syllables;  // sorted by time
   std::vector<SynthPhrase> phrases;      // sorted, disjoint

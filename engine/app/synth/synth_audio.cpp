@@ -11,7 +11,7 @@ struct Burst {
   double amp = 0, decay = 0, tau = 0, f0 = 0, glide = 0, consonant_amp = 0;
   double length = 0;  // seconds
   int harmonics = 1;
-  double norm = 1;    // sum of the harmonics' amplitudes 1/k
+  double norm = 1;  // sum of the harmonics' amplitudes 1/k
   static constexpr double kAttack = 0.010, kConsonantLen = 0.012, kFade = 0.005;
 };
 

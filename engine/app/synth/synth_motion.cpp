@@ -40,10 +40,10 @@ struct Style {
   double rest_down = 78.0, rest_fwd = 15.0, rest_flex = 55.0;
 
   explicit Style(double style)
-      : gain(0.85 + 0.2 * style),            // gesture amplitude
-        beat_width(0.36 - 0.04 * style),     // beat stroke duration (s)
-        other_hand(0.50 + 0.30 * style),     // share of the non-dominant hand in beats
-        talk_down(62.0 - 8.0 * style),       // gesture space height (upper-arm elevation)
+      : gain(0.85 + 0.2 * style),         // gesture amplitude
+        beat_width(0.36 - 0.04 * style),  // beat stroke duration (s)
+        other_hand(0.50 + 0.30 * style),  // share of the non-dominant hand in beats
+        talk_down(62.0 - 8.0 * style),    // gesture space height (upper-arm elevation)
         talk_fwd(25.0 + 6.0 * style),
         talk_flex(85.0 + 5.0 * style) {}
 };
@@ -120,10 +120,16 @@ struct IdleCurves {
   SmoothNoise arm_down[2], arm_fwd[2], arm_flex[2], curl[2];  // per side
 
   explicit IdleCurves(Rng& rng)
-      : sway_x(rng, 0.05, 0.15), sway_z(rng, 0.05, 0.15), hip_yaw(rng, 0.03, 0.1),
-        spine_yaw(rng, 0.05, 0.2), spine_roll(rng, 0.05, 0.2), head_yaw(rng, 0.05, 0.15),
-        head_pitch(rng, 0.05, 0.2), head_roll(rng, 0.05, 0.15),
-        breath_hz(rng.uniform(0.2, 0.3)), breath_phase(rng.uniform(0.0, 2.0 * kPi)),
+      : sway_x(rng, 0.05, 0.15),
+        sway_z(rng, 0.05, 0.15),
+        hip_yaw(rng, 0.03, 0.1),
+        spine_yaw(rng, 0.05, 0.2),
+        spine_roll(rng, 0.05, 0.2),
+        head_yaw(rng, 0.05, 0.15),
+        head_pitch(rng, 0.05, 0.2),
+        head_roll(rng, 0.05, 0.15),
+        breath_hz(rng.uniform(0.2, 0.3)),
+        breath_phase(rng.uniform(0.0, 2.0 * kPi)),
         arm_down{SmoothNoise(rng, 0.1, 0.5), SmoothNoise(rng, 0.1, 0.5)},
         arm_fwd{SmoothNoise(rng, 0.1, 0.5), SmoothNoise(rng, 0.1, 0.5)},
         arm_flex{SmoothNoise(rng, 0.1, 0.6), SmoothNoise(rng, 0.1, 0.6)},
@@ -137,8 +143,13 @@ struct Joints {
   std::vector<std::pair<int, int>> fingers[2];  // (joint, finger index 0..4)
 
   explicit Joints(const Skeleton& sk)
-      : hips(sk.find("Hips")), spine(sk.find("Spine")), spine1(sk.find("Spine1")), spine2(sk.find("Spine2")),
-        neck(sk.find("Neck")), head(sk.find("Head")), jaw(sk.find("Jaw")) {
+      : hips(sk.find("Hips")),
+        spine(sk.find("Spine")),
+        spine1(sk.find("Spine1")),
+        spine2(sk.find("Spine2")),
+        neck(sk.find("Neck")),
+        head(sk.find("Head")),
+        jaw(sk.find("Jaw")) {
     for (int side = 0; side < 2; ++side) {
       const std::string p = side == 0 ? "Left" : "Right";
       shoulder[side] = sk.find(p + "Shoulder");
@@ -206,7 +217,7 @@ void pose_arm(Motion& m, int f, double t, int side, const PoseInputs& in) {
   const IdleCurves& idle = in.idle;
   const double S = in.speak[fi], E = in.gestures.emph[fi];
   const double s = side == 0 ? 1.0 : -1.0;  // mirror: rotations about Y and Z flip sign
-  const bool dominant = side == 1;            // the right hand leads the beats
+  const bool dominant = side == 1;          // the right hand leads the beats
   const double b = (dominant ? in.gestures.beat[fi] : st.other_hand * in.gestures.beat_other[fi]) * st.gain;
   const double lower = dominant ? 0.0 : 4.0;  // the other hand sits a little lower
   double down = st.rest_down + S * (st.talk_down + lower - st.rest_down) + 4.0 * S * idle.arm_down[side](t);

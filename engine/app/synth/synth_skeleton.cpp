@@ -100,8 +100,7 @@ void add_fingers(Tree& t, int want) {
         const std::string name = p + "Hand" + kFingers[f] + std::to_string(level + 1);
         // Finger direction in the hand's frame (hand along +-X, palm down, thumb forward).
         const V dir = f == 4 ? glm::normalize(V(0.6 * s, -0.2, 0.8)) : V(s, 0, 0);
-        const int parent = level == 0 ? t.find(p + "Hand")
-                                      : t.find(p + "Hand" + kFingers[f] + std::to_string(level));
+        const int parent = level == 0 ? t.find(p + "Hand") : t.find(p + "Hand" + kFingers[f] + std::to_string(level));
         V offset;
         if (level == 0) {
           const double z[5] = {2.5, 0.7, -1.1, -2.8, 2.8};

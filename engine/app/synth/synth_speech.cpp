@@ -14,22 +14,21 @@ struct VocabWord {
 
 // Gesture keywords: every one of them is in assets/keywords.txt.
 const VocabWord kKeywords[] = {
-    {"this", 1, 0},  {"big", 1, 0},    {"not", 1, 0},    {"very", 2, 0},   {"all", 1, 0},
-    {"never", 2, 0}, {"here", 1, 0},   {"really", 2, 0}, {"always", 2, 0}, {"together", 3, 1},
+    {"this", 1, 0},  {"big", 1, 0},  {"not", 1, 0},    {"very", 2, 0},   {"all", 1, 0},
+    {"never", 2, 0}, {"here", 1, 0}, {"really", 2, 0}, {"always", 2, 0}, {"together", 3, 1},
 };
 // Neutral content words: none of them is in the lexicon.
 const VocabWord kContent[] = {
-    {"people", 2, 0},   {"water", 2, 0},    {"music", 2, 0},  {"story", 2, 0},   {"city", 2, 0},
-    {"problem", 2, 0},  {"question", 2, 0}, {"paper", 2, 0},  {"money", 2, 0},   {"garden", 2, 0},
-    {"family", 3, 0},   {"computer", 3, 1}, {"animal", 3, 0}, {"energy", 3, 0},  {"company", 3, 0},
-    {"banana", 3, 1},   {"house", 1, 0},    {"work", 1, 0},   {"car", 1, 0},     {"made", 1, 0},
-    {"said", 1, 0},     {"book", 1, 0},     {"friend", 1, 0}, {"school", 1, 0},  {"game", 1, 0},
-    {"road", 1, 0},     {"food", 1, 0},     {"world", 1, 0},  {"town", 1, 0},    {"dog", 1, 0},
+    {"people", 2, 0},   {"water", 2, 0},  {"music", 2, 0},   {"story", 2, 0},  {"city", 2, 0},   {"problem", 2, 0},
+    {"question", 2, 0}, {"paper", 2, 0},  {"money", 2, 0},   {"garden", 2, 0}, {"family", 3, 0}, {"computer", 3, 1},
+    {"animal", 3, 0},   {"energy", 3, 0}, {"company", 3, 0}, {"banana", 3, 1}, {"house", 1, 0},  {"work", 1, 0},
+    {"car", 1, 0},      {"made", 1, 0},   {"said", 1, 0},    {"book", 1, 0},   {"friend", 1, 0}, {"school", 1, 0},
+    {"game", 1, 0},     {"road", 1, 0},   {"food", 1, 0},    {"world", 1, 0},  {"town", 1, 0},   {"dog", 1, 0},
 };
 // Unstressed function words: none of them is in the lexicon, and none starts a lexicon phrase
 // together with the words above.
 const VocabWord kFunction[] = {
-    {"the", 1, -1}, {"and", 1, -1}, {"is", 1, -1},   {"to", 1, -1},  {"of", 1, -1},
+    {"the", 1, -1}, {"and", 1, -1}, {"is", 1, -1},   {"to", 1, -1},   {"of", 1, -1},
     {"it", 1, -1},  {"was", 1, -1}, {"with", 1, -1}, {"from", 1, -1},
 };
 template <typename T, std::size_t N>
@@ -50,9 +49,12 @@ const VocabWord& pick_word(Rng& rng, WordKind previous, WordKind* kind) {
   else
     *kind = WordKind::Content;
   switch (*kind) {
-    case WordKind::Keyword: return kKeywords[rng.below(count_of(kKeywords))];
-    case WordKind::Function: return kFunction[rng.below(count_of(kFunction))];
-    default: return kContent[rng.below(count_of(kContent))];
+    case WordKind::Keyword:
+      return kKeywords[rng.below(count_of(kKeywords))];
+    case WordKind::Function:
+      return kFunction[rng.below(count_of(kFunction))];
+    default:
+      return kContent[rng.below(count_of(kContent))];
   }
 }
 
