@@ -48,8 +48,9 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
   PoseFeatures features;
-  features.positions.resize(3 * first.joint_count(), total);
-  features.velocities.resize(3 * first.joint_count(), total);
+  const Eigen::Index dims = 3 * static_cast<Eigen::Index>(first.joint_count());
+  features.positions.resize(dims, total);
+  features.velocities.resize(dims, total);
   g.graph = GraphStorage(static_cast<std::size_t>(total));
 
   int offset = 0;

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config git clang-format
   libboost-graph-dev libeigen3-dev libaubio-dev libflann-dev libglm-dev libcairo2-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
@@ -24,6 +24,6 @@ else
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGMG_WERROR="${GMG_WERROR:-OFF}" >/dev/null
 cmake --build build -j"$jobs"
 echo "setup: built build/gmg"

@@ -3,7 +3,7 @@
 # message when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+GMG_WERROR=ON bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 cd build
 ctest --output-on-failure -j"$jobs"

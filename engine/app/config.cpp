@@ -10,6 +10,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/json.h"
 #include "engine/core/strings.h"
 
 namespace gmg {
@@ -221,13 +222,7 @@ std::string json_value_text(const std::string& key, const nlohmann::json& v) {
 }  // namespace
 
 void config_load_file(Config& config, const std::string& path) {
-  const std::string text = read_file_bytes(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(error_at_byte(path, static_cast<long long>(e.byte), "invalid JSON"));
-  }
+  const nlohmann::json j = read_json_file(path);
   if (!j.is_object()) throw Error(path + ": a config file must be a JSON object of \"key\": value");
   for (auto it = j.begin(); it != j.end(); ++it) {
     try {

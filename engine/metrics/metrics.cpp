@@ -9,11 +9,10 @@
 #include <Eigen/Geometry>  // cross product
 
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string shape_text(const Eigen::MatrixXd& m) {
   return std::to_string(m.rows()) + " frames x " + std::to_string(m.cols() / 3) + " joints (" +
@@ -111,7 +110,8 @@ std::vector<double> motion_beats(const Eigen::MatrixXd& pos, double fps, const M
   std::vector<double> s(static_cast<std::size_t>(n));
   for (Eigen::Index t = 1; t <= n; ++t) {
     double sum = 0.0;
-    for (int j = 0; j < joints; ++j) sum += (pos.block<1, 3>(t + 1, 3 * j) - pos.block<1, 3>(t - 1, 3 * j)).norm();
+    for (Eigen::Index j = 0; j < joints; ++j)
+      sum += (pos.block<1, 3>(t + 1, 3 * j) - pos.block<1, 3>(t - 1, 3 * j)).norm();
     s[static_cast<std::size_t>(t - 1)] = sum / joints * fps / 2.0;
   }
   s = smooth(s, params.smooth_window);
@@ -168,7 +168,7 @@ double metric_div(const Eigen::MatrixXd& pos, double fps, const MetricParams& pa
 
   long counted = 0, large = 0;
   for (Eigen::Index t = 0; t + 1 < n; ++t)
-    for (int j = 0; j < joints; ++j) {
+    for (Eigen::Index j = 0; j < joints; ++j) {
       if (speed(t, j) < min_speed || speed(t + 1, j) < min_speed) continue;
       const Eigen::Vector3d a = vel.block<1, 3>(t, 3 * j).transpose();
       const Eigen::Vector3d b = vel.block<1, 3>(t + 1, 3 * j).transpose();

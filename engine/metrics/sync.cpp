@@ -16,6 +16,7 @@ std::vector<double> control_shifts(double duration_s, int count, double min_shif
     throw Error("sync control: the audio lasts " + std::to_string(duration_s) + " s; shifts of at least " +
                 std::to_string(min_shift_s) + " s need " + std::to_string(2.0 * min_shift_s + 1.0) + " s");
   std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(count));
   const double span = duration_s - 2.0 * min_shift_s;
   for (int k = 0; k < count; ++k) out.push_back(min_shift_s + span * k / (count - 1));
   return out;
