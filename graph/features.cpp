@@ -8,10 +8,11 @@ PoseFeatures pose_features(const Motion& m) {
   PoseFeatures f;
   f.positions = world.transpose();
   const Eigen::Index dims = f.positions.rows();
-  // KNOWN BUG kept for the byte-identical restructure (fixed in the next change): the landed code
-  // subtracted the root after zeroing it, so only the root's own rows are zero and the other
-  // joints keep their world positions.
-  f.positions.topRows(3).setZero();
+  // Root-relative: where the speaker stands is not part of the gesture. (The landed code zeroed
+  // the root before subtracting it, so every other joint kept its world position and two frames
+  // of the same gesture at different capture spots looked far apart.)
+  const Eigen::MatrixXd root = f.positions.topRows(3);
+  for (Eigen::Index j = 0; j < dims / 3; ++j) f.positions.middleRows(3 * j, 3) -= root;
   f.velocities.resize(dims, m.frame_count);
   if (m.frame_count >= 2) {
     f.velocities.rightCols(m.frame_count - 1) =

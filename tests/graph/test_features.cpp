@@ -43,5 +43,17 @@ TEST(Features, HandOfATurningRoot) {
   }
 }
 
+// SPEC: features are root-relative, so where the speaker stands does not change a distance.
+TEST(Features, IgnoreWhereTheSpeakerStands) {
+  const Motion m = line_motion({0.0, 0.3, 0.6, 0.9});
+  Motion moved = m;
+  for (int f = 0; f < moved.frame_count; ++f) moved.translations[moved.index(f, 0)] += glm::dvec3(50.0 * f, -20.0, 7.0);
+  const PoseFeatures a = pose_features(m), b = pose_features(moved);
+  EXPECT_LT((a.positions - b.positions).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((a.velocities - b.velocities).cwiseAbs().maxCoeff(), 1e-12);
+  GraphParams p;
+  EXPECT_NEAR(pose_distance(a, 1, b, 1, p), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace gmg

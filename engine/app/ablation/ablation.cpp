@@ -226,6 +226,7 @@ AblationScore score(const Motion& m, const Plan& plan, const FoldData& fold, con
   s.step_share = n.step_share;
   s.transitions_per_s = transitions_per_second(source_transitions(source_frames(plan)), m.duration());
   s.failures = plan.failure_count();
+  s.subsequences = static_cast<int>(plan.segments.size());
   return s;
 }
 

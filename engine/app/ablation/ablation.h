@@ -77,6 +77,7 @@ struct AblationScore {
   double jerk_ratio = 0, acc_ratio = 0, root_speed_ratio = 0, jump_ratio = 0, step_share = 0;
   double transitions_per_s = 0;
   int failures = 0;
+  int subsequences = 0;  // pieces the output was planned in (the baselines: their chunks)
 };
 
 struct AblationRow {
