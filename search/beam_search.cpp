@@ -30,9 +30,22 @@ struct Entry {
   int tree;           // last node of the path, in the tree
   int length;         // nodes in the path
   double weight_sum;  // sum of edge weights along it
+  double start_cost;  // what the start node cost (junction cost; 0 in the paper's planner)
   double cost;
   bool terminated;
 };
+
+// The `width` lowest entries, sorted: a partial sort, since each step extends l_npaths paths by
+// every out-edge (thousands of entries on a large graph) to keep l_npaths of them.
+template <typename Less>
+void keep_lowest(std::vector<Entry>& entries, std::size_t width, const Less& less) {
+  if (entries.size() > width) {
+    std::partial_sort(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(width), entries.end(), less);
+    entries.resize(width);
+  } else {
+    std::sort(entries.begin(), entries.end(), less);
+  }
+}
 
 }  // namespace
 
@@ -46,23 +59,25 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
 
   std::vector<TreeNode> tree;
   std::vector<Entry> beam;
-  for (int s : request.start_nodes) {
-    tree.push_back({s, -1});
-    beam.push_back({static_cast<int>(tree.size()) - 1, 1, 0.0, path_cost(0.0, 1, target, params), false});
+  for (std::size_t k = 0; k < request.start_nodes.size(); ++k) {
+    tree.push_back({request.start_nodes[k], -1});
+    const double start = request.start_costs.empty() ? 0.0 : request.start_costs[k];
+    beam.push_back(
+        {static_cast<int>(tree.size()) - 1, 1, 0.0, start, start + path_cost(0.0, 1, target, params), false});
   }
   auto accepted = [&](const Entry& e) { return e.terminated && e.length >= min_len && e.length <= max_len; };
   auto by_cost = [](const Entry& a, const Entry& b) {
     if (a.cost != b.cost) return a.cost < b.cost;
     return a.tree < b.tree;  // deterministic ties: older paths first
   };
-  std::sort(beam.begin(), beam.end(), by_cost);
-  if (beam.size() > width) beam.resize(width);
+  keep_lowest(beam, width, by_cost);
 
   // A one-frame target is met by the start node itself.
   if (target == 1 && !beam.empty()) {
     result.accepted = true;
     result.path = {tree[static_cast<std::size_t>(beam.front().tree)].frame};
     result.cost = beam.front().cost;
+    result.candidates.push_back({result.path, result.cost});
     return result;
   }
 
@@ -87,26 +102,34 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         x.tree = static_cast<int>(tree.size()) - 1;
         x.length = e.length + 1;
         x.weight_sum = e.weight_sum + g.graph[*out].weight;
-        x.cost = path_cost(x.weight_sum, x.length, target, params);
+        x.start_cost = e.start_cost;
+        x.cost = x.start_cost + path_cost(x.weight_sum, x.length, target, params);
         x.terminated = is_stop_node(g, child, request);
         next.push_back(x);
       }
     }
-    std::sort(next.begin(), next.end(), by_cost);
-    if (next.size() > width) next.resize(width);
+    keep_lowest(next, width, by_cost);
     beam.swap(next);
     ++result.iterations;
   }
 
-  const Entry* best = nullptr;
+  std::vector<const Entry*> accepted_entries;
   for (const Entry& e : beam)
-    if (accepted(e) && (!best || by_cost(e, *best))) best = &e;
-  if (!best) return result;
+    if (accepted(e)) accepted_entries.push_back(&e);
+  if (accepted_entries.empty()) return result;
+  std::sort(accepted_entries.begin(), accepted_entries.end(),
+            [&](const Entry* a, const Entry* b) { return by_cost(*a, *b); });
+  for (const Entry* e : accepted_entries) {
+    BeamCandidate c;
+    c.cost = e->cost;
+    for (int t = e->tree; t >= 0; t = tree[static_cast<std::size_t>(t)].parent)
+      c.path.push_back(tree[static_cast<std::size_t>(t)].frame);
+    std::reverse(c.path.begin(), c.path.end());
+    result.candidates.push_back(std::move(c));
+  }
   result.accepted = true;
-  result.cost = best->cost;
-  for (int t = best->tree; t >= 0; t = tree[static_cast<std::size_t>(t)].parent)
-    result.path.push_back(tree[static_cast<std::size_t>(t)].frame);
-  std::reverse(result.path.begin(), result.path.end());
+  result.path = result.candidates.front().path;
+  result.cost = result.candidates.front().cost;
   return result;
 }
 

@@ -17,6 +17,15 @@ struct BeamRequest {
   std::string keyword;  // for Keyword termination
   // Frames whose stopping role is ignored (fallback 2); empty = none. Size 0 or frame_count.
   std::vector<char> ignore_stop;
+  // Natural planner: a cost each start node's paths begin with (its junction cost); empty = 0.
+  // Size 0 or start_nodes.size().
+  std::vector<double> start_costs;
+};
+
+// One accepted path.
+struct BeamCandidate {
+  std::vector<int> path;  // graph frames
+  double cost = 0.0;
 };
 
 struct BeamResult {
@@ -24,6 +33,9 @@ struct BeamResult {
   std::vector<int> path;  // the accepted path of lowest cost (graph frames), else empty
   double cost = 0.0;      // its cost
   int iterations = 0;     // beam extensions performed
+  // Every accepted path of the final beam, by increasing cost (path/cost above is the first);
+  // the natural planner draws among the near-equal ones.
+  std::vector<BeamCandidate> candidates;
 };
 
 // True when frame `f` ends a path for this request (not considering the start node).
@@ -32,7 +44,8 @@ bool is_stop_node(const MotionGraph& g, int f, const BeamRequest& request);
 // Runs the beam. Always ends: after max_length_factor * l_sub + 2 extensions at most.
 BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const SearchParams& params);
 
-// Path cost: lambda_w * sum of edge weights + lambda_len * |1 - len / l_sub|.
+// Path cost: lambda_w * sum of edge weights + lambda_len * |1 - len / l_sub| (plus the start cost
+// of the path's start node, when the request gives one).
 double path_cost(double weight_sum, int length, int target_length, const SearchParams& params);
 
 }  // namespace gmg

@@ -16,11 +16,13 @@ enum class Fallback : std::uint8_t {
   KeywordToRhythm,  // 1: keyword termination found nothing; rhythm termination did
   IgnoreStops,      // 2: paths ran through a share of the stopping nodes
   HoldLastFrame,    // 3: the previous result's last frame repeated to the target length
+  ContinueMotion,   // 3, natural planner: the previous result's capture plays on instead of freezing
 };
 inline constexpr EnumName<Fallback> kFallbackNames[] = {{Fallback::None, "none"},
                                                         {Fallback::KeywordToRhythm, "keyword_to_rhythm"},
                                                         {Fallback::IgnoreStops, "ignore_stops"},
-                                                        {Fallback::HoldLastFrame, "hold_last_frame"}};
+                                                        {Fallback::HoldLastFrame, "hold_last_frame"},
+                                                        {Fallback::ContinueMotion, "continue_motion"}};
 inline const char* fallback_name(Fallback f) { return enum_name(kFallbackNames, f); }
 
 // Fallback 1: the same request ending at any onset or break node instead of its keyword.

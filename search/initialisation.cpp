@@ -47,13 +47,17 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
 }
 
 std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k, int round,
-                                            const SearchParams& params, std::mt19937_64& rng) {
+                                            const SearchParams& params, std::mt19937_64& rng,
+                                            const std::vector<double>* junction) {
   const std::size_t width = static_cast<std::size_t>(params.l_npaths);
   std::vector<int> out;
   if (params.init == InitMode::Feature && !index.keys.empty()) {
     const std::vector<double> ft = key_feature(index.test_keys, k, params.l_feat);
     std::vector<double> distance(index.keys.size());
-    for (std::size_t m = 0; m < index.keys.size(); ++m) distance[m] = feature_distance_to(index, ft, m, params);
+    for (std::size_t m = 0; m < index.keys.size(); ++m) {
+      distance[m] = feature_distance_to(index, ft, m, params);
+      if (junction) distance[m] += params.junction_rank * (*junction)[m];
+    }
     std::vector<std::size_t> order(index.keys.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(),

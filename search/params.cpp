@@ -4,15 +4,22 @@
 
 namespace gmg {
 
+// The upper bounds keep a typo from asking for gigabytes: the beam holds l_npaths x out-degree
+// entries per step and every retry repeats it.
 void search_params_validate(const SearchParams& p) {
-  require_param(p.l_npaths >= 1, "l_npaths must be >= 1");
+  require_param(p.l_npaths >= 1 && p.l_npaths <= 1000, "l_npaths must be in [1, 1000]");
   require_param(p.lambda_w >= 0 && p.lambda_len >= 0, "lambda_w and lambda_len must be >= 0");
-  require_param(p.l_feat >= 1, "l_feat must be >= 1");
+  require_param(p.l_feat >= 1 && p.l_feat <= 100, "l_feat must be in [1, 100]");
   require_param(static_cast<int>(p.w_full.size()) == p.l_feat, "w_full must have l_feat (" + std::to_string(p.l_feat) +
                                                                    ") entries, has " + std::to_string(p.w_full.size()));
-  require_param(p.retries >= 0, "retries must be >= 0");
-  require_param(p.max_length_factor >= 1.1, "max_length_factor must be >= 1.1");
-  require_param(p.ignore_rounds >= 1, "ignore_rounds must be >= 1");
+  require_param(p.retries >= 0 && p.retries <= 100, "retries must be in [0, 100]");
+  require_param(p.max_length_factor >= 1.1 && p.max_length_factor <= 10.0, "max_length_factor must be in [1.1, 10]");
+  require_param(p.ignore_rounds >= 1 && p.ignore_rounds <= 100, "ignore_rounds must be in [1, 100]");
+  require_param(p.junction_rank >= 0 && p.junction_beam >= 0, "junction_rank and junction_beam must be >= 0");
+  require_param(p.continue_min > 0 && p.continue_min <= 1.0 && p.continue_max >= 1.0 && p.continue_max <= 4.0,
+                "continue_min must be in (0, 1] and continue_max in [1, 4]");
+  require_param(p.merge_below >= 0 && p.merge_below <= 1000, "merge_below must be in [0, 1000]");
+  require_param(p.variety >= 0, "variety must be >= 0");
 }
 
 }  // namespace gmg

@@ -16,7 +16,18 @@ namespace gmg {
 enum class InitMode : std::uint8_t { Feature, Random };
 inline constexpr EnumName<InitMode> kInitModeNames[] = {{InitMode::Feature, "feature"}, {InitMode::Random, "random"}};
 
+// Natural (ours, the default): the paper's method made junction-aware (SPEC "Junction-aware
+// search"): start nodes and beam paths pay for the pose distance from where the output would
+// continue, a natural continuation is taken when its stop node falls within a wider window,
+// very short subsequences merge into the next, and near-equal candidates are drawn at random.
+// Paper: the paper's planner as published (all of that off); the pipeline then also joins pieces
+// with the paper's cross-fade and a free root.
+enum class PlannerMode : std::uint8_t { Natural, Paper };
+inline constexpr EnumName<PlannerMode> kPlannerModeNames[] = {{PlannerMode::Natural, "natural"},
+                                                              {PlannerMode::Paper, "paper"}};
+
 struct SearchParams {
+  PlannerMode planner = PlannerMode::Natural;
   int l_npaths = 20;        // beam width and number of start nodes
   double lambda_w = 1.0;    // weight of the summed edge weights in the path cost
   double lambda_len = 1.0;  // weight of the length mismatch |1 - len/l_sub|
@@ -35,6 +46,26 @@ struct SearchParams {
   InitMode init = InitMode::Feature;  // feature (paper 4.2.3) or random (weak initialisation)
   // Fallback 2 drops this growing share of stopping nodes per round: 0.25, 0.5, 0.75, 1.0.
   int ignore_rounds = 4;
+
+  // ---- natural planner only ----
+  // Junction cost J(s) = d_pose(c, s) / (mean unnatural edge weight of the graph), c the frame the
+  // output would continue into. Added to d_feat with weight junction_rank when ranking start
+  // nodes (d_feat differences between good key nodes are a few frames; J of a distant pose is
+  // 3-10, so 5 lets pose continuity decide among rhythmically similar nodes) and to a beam path's
+  // cost with weight junction_beam (one unnatural edge's worth per unit of J).
+  double junction_rank = 5.0;
+  double junction_beam = 1.0;
+  // A natural continuation whose stop node lies within [continue_min, continue_max] x l_sub is
+  // taken and time-warped onto the target. 0.5-2.0 visibly speeds playback up; 0.9-1.1 (the
+  // beam's window) continues too rarely (the prototype measured 0.7-1.4 best).
+  double continue_min = 0.7;
+  double continue_max = 1.4;
+  // Test subsequences shorter than this (frames) merge into the next: a 1/3 s piece cannot hold
+  // a gesture and only adds a junction.
+  int merge_below = 10;
+  // Seeded variety: among accepted candidates whose cost is within `variety` of the best, one is
+  // drawn at random, so different seeds give different plausible motions.
+  double variety = 0.1;
 };
 
 // Throws gmg::Error naming the first key out of range.

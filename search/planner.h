@@ -23,7 +23,13 @@ struct PlannedSegment {
   Fallback fallback = Fallback::None;
   int retries = 0;         // beam searches beyond the first
   double cost = 0.0;       // cost of the accepted path (0 otherwise)
-  bool continued = false;  // the accepted path started from the previous path's successors
+  bool continued = false;  // the path starts at the previous path's natural successor: no junction
+  // The frame the output would have continued into (the previous path's natural successor, or its
+  // last frame at a break); -1 for the first subsequence.
+  int junction_from = -1;
+  double junction_cost = 0.0;  // J(junction_from, path.front()) (search/junction.h); 0 when continued
+  double junction_gap = 0.0;   // largest root-relative joint distance of that junction (file units)
+  int transitions_inside = 0;  // unnatural edges taken inside the path
 };
 
 struct Plan {

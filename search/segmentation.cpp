@@ -35,4 +35,38 @@ std::vector<Subsequence> segment_speech(int total, const std::vector<int>& onset
   return out;
 }
 
+std::vector<Subsequence> merge_short_subsequences(const std::vector<Subsequence>& subs, int min_length) {
+  std::vector<Subsequence> out;
+  int pending_start = -1;  // start of short subsequences waiting to join the next
+  for (const Subsequence& s : subs) {
+    Subsequence merged = s;
+    if (pending_start >= 0) {
+      merged.length += merged.start - pending_start;
+      merged.start = pending_start;
+      pending_start = -1;
+    }
+    if (merged.length < min_length) {
+      pending_start = merged.start;
+      continue;
+    }
+    out.push_back(merged);
+  }
+  if (pending_start >= 0) {
+    const int end = subs.back().start + subs.back().length;
+    if (out.empty()) {
+      Subsequence all = subs.back();
+      all.start = pending_start;
+      all.length = end - pending_start;
+      out.push_back(all);
+    } else {
+      // The short tail joins the last kept piece, which now ends where the speech ends.
+      Subsequence& last = out.back();
+      last.length = end - last.start;
+      last.kind = subs.back().kind;
+      last.keyword = subs.back().keyword;
+    }
+  }
+  return out;
+}
+
 }  // namespace gmg

@@ -26,4 +26,9 @@ struct Subsequence {
 std::vector<Subsequence> segment_speech(int total, const std::vector<int>& onset_frames,
                                         const std::vector<std::pair<int, std::string>>& keyword_frames);
 
+// The natural planner's merge: a subsequence shorter than `min_length` frames joins the next one
+// (which keeps its end and termination); a short last one joins the one before it. Lengths still
+// sum to the same total; min_length <= 1 changes nothing.
+std::vector<Subsequence> merge_short_subsequences(const std::vector<Subsequence>& subs, int min_length);
+
 }  // namespace gmg

@@ -10,7 +10,9 @@
 #include "audio/wav.h"
 #include "engine/assemble/blend.h"
 #include "engine/assemble/resample.h"
+#include "engine/assemble/transitions.h"
 #include "engine/core/error.h"
+#include "engine/metrics/evaluate.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/cleanup.h"
 #include "search/segmentation.h"
@@ -69,7 +71,26 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   return graph_build(std::move(inputs), config.graph);
 }
 
+BlendParams assembly_params(const Config& config) {
+  BlendParams p = config.blend;
+  // The paper's planner comes with the paper's blending (SPEC: "with the cost weight at 0 and the
+  // paper blending, the planner is the paper's").
+  if (config.search.planner == PlannerMode::Paper) {
+    p.mode = BlendMode::Crossfade;
+    p.root = RootMode::Free;
+  }
+  return p;
+}
+
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
+  if (params.mode == BlendMode::Inertialize) {
+    std::vector<char> continues(static_cast<std::size_t>(g.frame_count()));
+    for (int f = 0; f < g.frame_count(); ++f) continues[static_cast<std::size_t>(f)] = !(g.node(f).kinds & kBreakNode);
+    std::vector<PathPiece> pieces;
+    pieces.reserve(plan.segments.size());
+    for (const PlannedSegment& s : plan.segments) pieces.push_back({s.path, s.sub.length});
+    return assemble_inertialized(g.motion, continues, pieces, params);
+  }
   std::vector<Motion> pieces;
   pieces.reserve(plan.segments.size());
   for (const PlannedSegment& s : plan.segments) pieces.push_back(resample_path(g.motion, s.path, s.sub.length));
@@ -82,9 +103,9 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
   Reenactment r;
   r.plan = plan_reenactment(g, subs, config.search, rng);
-  r.motion = assemble_motion(g, r.plan, config.blend);
+  r.motion = assemble_motion(g, r.plan, assembly_params(config));
 
-  r.report = reenactment_report(r.plan, events, config, g.motion.fps);
+  r.report = reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton));
   return r;
 }
 

@@ -72,7 +72,12 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
 // Same, from events already analysed.
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);
 
-// Paths of a plan, resampled to their target lengths and blended into one motion.
+// The assembly parameters a configuration implies: config.blend, except that the paper's planner
+// joins pieces with the paper's cross-fade and a free root.
+BlendParams assembly_params(const Config& config);
+
+// Paths of a plan joined into one motion: by source time with inertialized transitions
+// (BlendMode::Inertialize), or resampled to their target lengths and blended (Offset, Crossfade).
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params);
 
 }  // namespace gmg

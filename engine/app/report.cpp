@@ -18,7 +18,7 @@ nlohmann::ordered_json frame_ranges(const std::vector<int>& path) {
 }  // namespace
 
 nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& events, const Config& config,
-                                          double fps) {
+                                          double fps, double length_to_cm) {
   nlohmann::ordered_json rep;
   rep["frames"] = events.total_frames;
   rep["fps"] = fps;
@@ -37,6 +37,9 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
     if (s.sub.kind == Termination::Keyword) item["keyword"] = s.sub.keyword;
     item["accepted"] = s.accepted;
     item["continued"] = s.continued;
+    item["junction_gap_cm"] = s.junction_gap * length_to_cm;
+    item["junction_cost"] = s.junction_cost;
+    item["transitions_inside"] = s.transitions_inside;
     item["retries"] = s.retries;
     item["fallback"] = fallback_name(s.fallback);
     item["failure"] = s.failure;
@@ -53,7 +56,8 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
                    {"fallbacks",
                     {{"keyword_to_rhythm", plan.fallback_count(Fallback::KeywordToRhythm)},
                      {"ignore_stops", plan.fallback_count(Fallback::IgnoreStops)},
-                     {"hold_last_frame", plan.fallback_count(Fallback::HoldLastFrame)}}}};
+                     {"hold_last_frame", plan.fallback_count(Fallback::HoldLastFrame)},
+                     {"continue_motion", plan.fallback_count(Fallback::ContinueMotion)}}}};
   return rep;
 }
 

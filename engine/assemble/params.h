@@ -12,25 +12,46 @@ enum class BlendCurve : std::uint8_t { Linear, Sigmoid };
 inline constexpr EnumName<BlendCurve> kBlendCurveNames[] = {{BlendCurve::Linear, "linear"},
                                                             {BlendCurve::Sigmoid, "sigmoid"}};
 
-// How a junction is blended (see BlendParams::mode).
-enum class BlendMode : std::uint8_t { Offset, Crossfade };
-inline constexpr EnumName<BlendMode> kBlendModeNames[] = {{BlendMode::Offset, "offset"},
-                                                          {BlendMode::Crossfade, "crossfade"}};
+// How pieces are joined (see BlendParams::mode).
+enum class BlendMode : std::uint8_t { Inertialize, Offset, Crossfade };
+inline constexpr EnumName<BlendMode> kBlendModeNames[] = {
+    {BlendMode::Inertialize, "inertialize"}, {BlendMode::Offset, "offset"}, {BlendMode::Crossfade, "crossfade"}};
+
+// What the root joint's horizontal position does at a transition (engine/assemble/transitions.h).
+enum class RootMode : std::uint8_t { Anchor, Free };
+inline constexpr EnumName<RootMode> kRootModeNames[] = {{RootMode::Anchor, "anchor"}, {RootMode::Free, "free"}};
 
 struct BlendParams {
-  // Frames on each side of a junction. Retries restart the search at other key nodes, so some
-  // junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at
-  // 30 fps) halves the output's mean jerk against 4 (94.8k -> 50.1k cm/s^3), while 12 also
-  // lowers Div, i.e. starts to smear strokes.
+  // Inertialize (the default, engine/assemble/transitions.h): the output is read at continuous
+  // source time and every transition, a junction that did not continue or an unnatural edge
+  // inside a path, carries its pose and velocity offset over and lets it decay (half-life
+  // halflife_s). Offset and Crossfade join separately resampled pieces over l_blend frames each
+  // side (engine/assemble/blend.h); they play unnatural edges inside a path unblended.
+  BlendMode mode = BlendMode::Inertialize;
+  // Inertialization half-life. 0.2 s carries an arm through a junction at its own speed and hands
+  // over within about a second; 0.1 s left visibly faster steps on BEAT2, 0.3 s smears strokes
+  // into the next piece (prototype measurements, shared/design/natural_motion.md).
+  double halflife_s = 0.2;
+  // Anchor: a new piece's root continues horizontally from where the output was and relaxes
+  // toward the capture's own position with half-life root_halflife_s. Free: the root plays its
+  // capture position (and blends between capture spots), the landed behaviour.
+  RootMode root = RootMode::Anchor;
+  // Slow enough that the drift back stays below the capture's own root speed (an offset of
+  // 30 cm relaxing with a 2 s half-life moves at most 10 cm/s), fast enough that the speaker does
+  // not wander off the reference's standing area over a minute of new speech.
+  double root_halflife_s = 2.0;
+
+  // Offset and Crossfade only: frames on each side of a junction. Retries restart the search at other key nodes, so
+  // some junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at 30 fps) halves the
+  // output's mean jerk against 4 (94.8k -> 50.1k cm/s^3), while 12 also lowers Div, i.e. starts to smear strokes.
   int l_blend = 8;
   BlendCurve curve = BlendCurve::Sigmoid;
   // Offset: keep both pieces' own motion and spread the junction's excess jump (the right
   // piece's first frame minus where the left piece was heading) over the window, so a junction
-  // that is already continuous is left as it is. Crossfade: SPEC's literal cross-fade of
-  // "left, then its last frame held" into "right's first frame held, then right"; its holds
-  // stall one side while the other moves, so even a continuous junction speeds up and slows
-  // down (a step of v (1 - w) + dw * l_blend * v > v). Offset is the default for that reason.
-  BlendMode mode = BlendMode::Offset;
+  // that is already continuous is left as it is. Crossfade: SPEC's literal (the paper's)
+  // cross-fade of "left, then its last frame held" into "right's first frame held, then right";
+  // its holds stall one side while the other moves, so even a continuous junction speeds up and
+  // slows down (a step of v (1 - w) + dw * l_blend * v > v).
 };
 
 // Throws gmg::Error naming the first key out of range.

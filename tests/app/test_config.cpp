@@ -87,7 +87,7 @@ TEST(ConfigSet, EnumKeysRejectAnUnknownNameListingTheChoices) {
   EXPECT_EQ(error_of([&] { config_set(c, "blend_curve", "cubic"); }),
             "config key 'blend_curve': 'cubic' is not linear or sigmoid");
   EXPECT_EQ(error_of([&] { config_set(c, "blend_mode", "Offset"); }),  // names are exact
-            "config key 'blend_mode': 'Offset' is not offset or crossfade");
+            "config key 'blend_mode': 'Offset' is not inertialize, offset or crossfade");
   EXPECT_EQ(c.search.init, Config{}.search.init);
 }
 

@@ -26,7 +26,7 @@ TEST(Report, FallbackNamesAndTotalsFollowThePlan) {
   SpeechEvents ev;
   ev.total_frames = 34;
   ev.duration_s = 34 / 30.0;
-  const nlohmann::ordered_json r = reenactment_report(plan, ev, Config{}, 30.0);
+  const nlohmann::ordered_json r = reenactment_report(plan, ev, Config{}, 30.0, 1.0);
   const char* expected[] = {"none", "keyword_to_rhythm", "ignore_stops", "hold_last_frame", "none"};
   ASSERT_EQ(r["subsequences"].size(), 5u);
   for (std::size_t i = 0; i < 5; ++i) {

@@ -318,7 +318,7 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
         if (row.setup == AblationSetup::Contiguous || row.setup == AblationSetup::RandomChunks) {
           plan = row.setup == AblationSetup::Contiguous ? contiguous_plan(p.graph, test_frames, rng)
                                                         : random_chunks_plan(p.graph, test_frames, full_chunk, rng);
-          motion = assemble_motion(p.graph, plan, cfg.blend);
+          motion = assemble_motion(p.graph, plan, assembly_params(cfg));
         } else {
           Reenactment r = reenact_events(p.graph, p.test_events, cfg);
           plan = std::move(r.plan);
@@ -328,6 +328,7 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
                                                                   static_cast<double>(plan.segments.size()))));
         }
         row.scores.push_back(score(motion, plan, fold, options.metrics));
+        row.scores.back().test_onsets = static_cast<int>(p.test_events.onset_frames.size());
       }
     }
   }

@@ -78,6 +78,7 @@ struct AblationScore {
   double transitions_per_s = 0;
   int failures = 0;
   int subsequences = 0;  // pieces the output was planned in (the baselines: their chunks)
+  int test_onsets = 0;   // onsets the detector found in the test speech
 };
 
 struct AblationRow {

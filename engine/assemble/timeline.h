@@ -1,0 +1,35 @@
+// Assembly by source time: where each output frame is read from.
+//
+// A plan is a list of pieces, each a path of source frames stretched or squeezed onto its target
+// length. Instead of resampling each piece on its own and joining the pieces, the output is
+// mapped to a continuous source time: frame i of a piece reads its path at position
+// x = i * (n - 1) / (L - 1), inside the run of consecutive source frames that holds floor(x), so
+// a path that walks naturally plays as one stretch of capture at the piece's warp rate. Every
+// place where the source does not continue naturally, a junction that did not continue or an
+// unnatural edge inside a path, starts a new run: that is a transition (engine/assemble/transitions.h).
+#pragma once
+
+#include <vector>
+
+namespace gmg {
+
+// One piece of the plan: graph frames (>= 1) and the output frames they fill (>= 1).
+struct PathPiece {
+  std::vector<int> path;
+  int length = 1;
+};
+
+struct SourceClock {
+  double time = 0.0;  // source frame time (fractional: between floor(time) and the next frame)
+  double rate = 1.0;  // source frames per output frame here (the piece's warp rate; 0 for a held frame)
+  int run = 0;        // increases at every transition; equal runs are one continuous stretch
+};
+
+// `continues[f]` says whether source frame f is naturally followed by f + 1 (not a break node).
+// One clock per output frame (the sum of the pieces' lengths).
+std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues);
+
+// Number of transitions in a timeline (run changes).
+int timeline_transitions(const std::vector<SourceClock>& timeline);
+
+}  // namespace gmg

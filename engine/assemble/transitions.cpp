@@ -1,0 +1,180 @@
+#include "engine/assemble/transitions.h"
+
+#include <cmath>
+
+#include "engine/assemble/inertialize.h"
+#include "engine/core/error.h"
+#include "engine/motion/rotation.h"
+
+namespace gmg {
+namespace {
+
+// A whole-skeleton pose: local rotations and translations per joint.
+struct Pose {
+  std::vector<glm::dquat> rot;
+  std::vector<glm::dvec3> tr;
+};
+
+// Per-joint velocities, per output frame: rotations as exponential-map vectors in the parent's
+// frame (q(t) = exp(w) q(t - 1)), translations as vectors.
+struct Velocity {
+  std::vector<glm::dvec3> ang;
+  std::vector<glm::dvec3> lin;
+};
+
+// Reads the source at fractional times. capture_first[f] is the first frame of the continuous
+// capture run holding f, so a velocity never differences across a break.
+class SourceReader {
+ public:
+  SourceReader(const Motion& m, const std::vector<char>& continues) : m_(m), continues_(continues) {
+    first_.resize(static_cast<std::size_t>(m.frame_count));
+    for (int f = 0; f < m.frame_count; ++f)
+      first_[static_cast<std::size_t>(f)] =
+          f > 0 && continues[static_cast<std::size_t>(f - 1)] ? first_[static_cast<std::size_t>(f - 1)] : f;
+  }
+
+  // Whether time t can be read in the same capture run as frame `from`.
+  bool readable(double t, int from) const {
+    if (t < 0.0) return false;
+    const int f = static_cast<int>(std::floor(t));
+    if (f >= m_.frame_count || first_[static_cast<std::size_t>(f)] != first_[static_cast<std::size_t>(from)])
+      return false;
+    return t == f || (f + 1 < m_.frame_count && continues_[static_cast<std::size_t>(f)]);
+  }
+
+  void sample(double t, Pose& out) const {
+    const int f = static_cast<int>(std::floor(t));
+    const double a = t - f;
+    const int g = a > 0.0 && f + 1 < m_.frame_count && continues_[static_cast<std::size_t>(f)] ? f + 1 : f;
+    const int joints = m_.joint_count();
+    out.rot.resize(static_cast<std::size_t>(joints));
+    out.tr.resize(static_cast<std::size_t>(joints));
+    for (int j = 0; j < joints; ++j) {
+      out.rot[static_cast<std::size_t>(j)] =
+          g == f ? m_.rotation(f, j) : slerp_shortest(m_.rotation(f, j), m_.rotation(g, j), a);
+      out.tr[static_cast<std::size_t>(j)] = (1.0 - a) * m_.translation(f, j) + a * m_.translation(g, j);
+    }
+  }
+
+  // The source's own velocity at time t, at `rate` source frames per output frame: backward
+  // inside its capture run, forward at the run's start; zero for a held frame (rate 0).
+  void velocity(double t, double rate, const Pose& at, Velocity& out) const {
+    const int joints = m_.joint_count();
+    out.ang.assign(static_cast<std::size_t>(joints), glm::dvec3(0.0));
+    out.lin.assign(static_cast<std::size_t>(joints), glm::dvec3(0.0));
+    if (rate <= 0.0) return;
+    const int f = static_cast<int>(std::floor(t));
+    Pose other;
+    double sign = 1.0;
+    if (readable(t - rate, f)) {
+      sample(t - rate, other);
+    } else if (readable(t + rate, f)) {
+      sample(t + rate, other);
+      sign = -1.0;
+    } else {
+      return;
+    }
+    for (int j = 0; j < joints; ++j) {
+      const std::size_t k = static_cast<std::size_t>(j);
+      out.ang[k] = sign * quat_to_expmap(at.rot[k] * glm::conjugate(other.rot[k]));
+      out.lin[k] = sign * (at.tr[k] - other.tr[k]);
+    }
+  }
+
+ private:
+  const Motion& m_;
+  const std::vector<char>& continues_;
+  std::vector<int> first_;
+};
+
+// The decaying offsets of every joint, and the root's horizontal anchor.
+struct Offsets {
+  std::vector<glm::dvec3> rot, rot_vel, pos, pos_vel;
+  glm::dvec3 anchor{0.0};
+
+  explicit Offsets(int joints)
+      : rot(static_cast<std::size_t>(joints), glm::dvec3(0.0)), rot_vel(rot), pos(rot), pos_vel(rot) {}
+
+  void decay(double y, double anchor_factor) {
+    for (std::size_t j = 0; j < rot.size(); ++j) {
+      spring_decay(rot[j], rot_vel[j], y, 1.0);
+      spring_decay(pos[j], pos_vel[j], y, 1.0);
+    }
+    anchor *= anchor_factor;
+  }
+
+  // A transition: the output was heading to `old_pose` moving at `old_vel` (source terms, before
+  // the offsets); from now on the source is `dst` moving at `dst_vel`. The new offsets make the
+  // output's pose and velocity continuous.
+  void transition(const Pose& old_pose, const Velocity& old_vel, const Pose& dst, const Velocity& dst_vel,
+                  bool anchor_root) {
+    for (std::size_t j = 0; j < rot.size(); ++j) {
+      const glm::dquat out_old = expmap_to_quat(rot[j]) * old_pose.rot[j];
+      rot[j] = quat_to_expmap(out_old * glm::conjugate(dst.rot[j]));
+      rot_vel[j] = rot_vel[j] + old_vel.ang[j] - dst_vel.ang[j];
+      pos[j] = pos[j] + old_pose.tr[j] - dst.tr[j];
+      pos_vel[j] = pos_vel[j] + old_vel.lin[j] - dst_vel.lin[j];
+    }
+    if (anchor_root && !pos.empty()) {
+      // The horizontal jump of the root is not decayed quickly: it becomes the slow anchor.
+      anchor += glm::dvec3(pos[0].x, 0.0, pos[0].z);
+      pos[0].x = pos[0].z = 0.0;
+    }
+  }
+};
+
+}  // namespace
+
+Motion assemble_inertialized(const Motion& source, const std::vector<char>& continues,
+                             const std::vector<PathPiece>& pieces, const BlendParams& params) {
+  if (!(params.halflife_s > 0.0)) throw Error("assemble: transition_halflife must be > 0");
+  if (static_cast<int>(continues.size()) != source.frame_count) throw Error("assemble: continues has the wrong size");
+  const std::vector<SourceClock> clock = source_timeline(pieces, continues);
+  const int joints = source.joint_count();
+  Motion out = motion_rest(source.skeleton, source.fps, static_cast<int>(clock.size()));
+  const SourceReader reader(source, continues);
+  const double y = spring_damping(params.halflife_s * source.fps);
+  const bool anchor_root = params.root == RootMode::Anchor;
+  const double anchor_factor = anchor_root ? std::exp(-std::log(2.0) / (params.root_halflife_s * source.fps)) : 1.0;
+
+  Offsets off(joints);
+  Pose dst, previous, old_pose;
+  Velocity dst_vel, previous_vel, old_vel;
+  for (std::size_t i = 0; i < clock.size(); ++i) {
+    const SourceClock& c = clock[i];
+    reader.sample(c.time, dst);
+    if (i > 0) {
+      off.decay(y, anchor_factor);
+      if (c.run != clock[i - 1].run) {
+        // Where the old source would have gone: on along its own capture when it can, else on
+        // at its last velocity.
+        const SourceClock& p = clock[i - 1];
+        const int from = static_cast<int>(std::floor(p.time));
+        if (p.rate > 0.0 && reader.readable(p.time + p.rate, from)) {
+          reader.sample(p.time + p.rate, old_pose);
+          reader.velocity(p.time + p.rate, p.rate, old_pose, old_vel);
+        } else {
+          old_pose = previous;
+          for (std::size_t j = 0; j < old_pose.rot.size(); ++j) {
+            old_pose.rot[j] = expmap_to_quat(previous_vel.ang[j]) * previous.rot[j];
+            old_pose.tr[j] = previous.tr[j] + previous_vel.lin[j];
+          }
+          old_vel = previous_vel;
+        }
+        reader.velocity(c.time, c.rate, dst, dst_vel);
+        off.transition(old_pose, old_vel, dst, dst_vel, anchor_root);
+      }
+    }
+    for (int j = 0; j < joints; ++j) {
+      const std::size_t k = static_cast<std::size_t>(j);
+      out.rotations[out.index(static_cast<int>(i), j)] = glm::normalize(expmap_to_quat(off.rot[k]) * dst.rot[k]);
+      out.translations[out.index(static_cast<int>(i), j)] =
+          dst.tr[k] + off.pos[k] + (j == 0 ? off.anchor : glm::dvec3(0.0));
+    }
+    previous = dst;
+    reader.velocity(c.time, c.rate, dst, previous_vel);
+  }
+  return out;
+}
+
+}  // namespace gmg

@@ -1,0 +1,48 @@
+// The junction cost of the natural planner (SPEC "Junction-aware search"): how far a candidate
+// start frame is, in pose, from the frame the output would naturally continue into.
+//
+// J(c, s) = d_pose(c, s) / w, with the graph's own d_pose (graph/features.h) and w the mean weight
+// of its unnatural edges, so one unit of J is what a typical transition of this graph costs.
+// Features are computed on demand for the frames asked about (forward kinematics of a frame and
+// its neighbour), so a planning job on an hour-long graph does not pay for every frame.
+#pragma once
+
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "graph/motion_graph.h"
+
+namespace gmg {
+
+class JunctionCost {
+ public:
+  explicit JunctionCost(const MotionGraph& g);
+
+  // J(c, s); 0 when s is c.
+  double cost(int c, int s);
+
+  // J(c, s) for every s in `frames`, vectorised over a cached matrix of those frames' features
+  // (the key nodes are ranked with it once per subsequence).
+  void costs(int c, const std::vector<int>& frames, std::vector<double>& out);
+
+  // The largest root-relative joint distance (file units) between frames a and b: the raw pose
+  // gap a report shows.
+  double largest_joint_gap(int a, int b);
+
+  double normaliser() const { return normaliser_; }
+
+ private:
+  // Root-relative positions and velocity of frame f, as one column [lambda_pos p; lambda_vel v].
+  const Eigen::VectorXd& features(int f);
+
+  const MotionGraph& g_;
+  double normaliser_ = 1.0;
+  std::unordered_map<int, Eigen::VectorXd> cache_;
+  // The batch matrix of `costs`: columns for the frames of the last list asked about.
+  std::vector<int> batch_frames_;
+  Eigen::MatrixXd batch_pos_, batch_vel_;
+};
+
+}  // namespace gmg
