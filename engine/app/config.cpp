@@ -167,6 +167,8 @@ const std::vector<Accessor>& accessors() {
                &Config::blend, &BlendParams::root, kRootModeNames),
       number_key("root_halflife", "seconds for the root anchor to relax halfway back to the capture's position",
                  &Config::blend, &BlendParams::root_halflife_s),
+      bool_key("foot_lock", "keep feet the capture has on the ground planted (IK on the legs)", &Config::blend,
+               &BlendParams::foot_lock),
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
        [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_trimmed(v, ','); },
        [](const Config& c) {

@@ -36,10 +36,15 @@ struct BlendParams {
   // toward the capture's own position with half-life root_halflife_s. Free: the root plays its
   // capture position (and blends between capture spots), the landed behaviour.
   RootMode root = RootMode::Anchor;
-  // Slow enough that the drift back stays below the capture's own root speed (an offset of
-  // 30 cm relaxing with a 2 s half-life moves at most 10 cm/s), fast enough that the speaker does
-  // not wander off the reference's standing area over a minute of new speech.
-  double root_halflife_s = 2.0;
+  // Slow enough that the drift back stays well below the capture's own root speed (an offset of
+  // 30 cm relaxing with a 5 s half-life moves at most 4 cm/s; with 2 s the drift shifted the
+  // low-speed part of every joint's speed histogram, Hellinger 0.145 against 0.099 at 4 s on
+  // BEAT2), fast enough that the speaker does not wander off the reference's standing area over
+  // a minute of new speech.
+  double root_halflife_s = 5.0;
+  // Inertialize only: feet the source has on the ground stay where they are (two-joint IK on
+  // the legs, engine/assemble/foot_lock.h) instead of gliding while a transition decays.
+  bool foot_lock = true;
 
   // Offset and Crossfade only: frames on each side of a junction. Retries restart the search at other key nodes, so
   // some junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at 30 fps) halves the

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/assemble/foot_lock.h"
 #include "engine/assemble/inertialize.h"
 #include "engine/core/error.h"
 #include "engine/motion/rotation.h"
@@ -95,12 +96,19 @@ struct Offsets {
   explicit Offsets(int joints)
       : rot(static_cast<std::size_t>(joints), glm::dvec3(0.0)), rot_vel(rot), pos(rot), pos_vel(rot) {}
 
-  void decay(double y, double anchor_factor) {
+  void decay(double y) {
     for (std::size_t j = 0; j < rot.size(); ++j) {
       spring_decay(rot[j], rot_vel[j], y, 1.0);
       spring_decay(pos[j], pos_vel[j], y, 1.0);
     }
-    anchor *= anchor_factor;
+  }
+
+  // Relaxes the anchor toward 0 by `factor`, but never by more than `budget` this frame.
+  void relax_anchor(double factor, double budget) {
+    glm::dvec3 step = anchor * (1.0 - factor);
+    const double length = glm::length(step);
+    if (length > budget) step *= budget / length;
+    anchor -= step;
   }
 
   // A transition: the output was heading to `old_pose` moving at `old_vel` (source terms, before
@@ -123,6 +131,17 @@ struct Offsets {
   }
 };
 
+// The largest horizontal root step of the capture (file units per frame), inside capture runs.
+double largest_root_step(const Motion& m, const std::vector<char>& continues) {
+  double largest = 0.0;
+  for (int f = 1; f < m.frame_count; ++f) {
+    if (!continues[static_cast<std::size_t>(f - 1)]) continue;
+    const glm::dvec3 d = m.translation(f, 0) - m.translation(f - 1, 0);
+    largest = std::max(largest, std::hypot(d.x, d.z));
+  }
+  return largest;
+}
+
 }  // namespace
 
 Motion assemble_inertialized(const Motion& source, const std::vector<char>& continues,
@@ -136,6 +155,9 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   const double y = spring_damping(params.halflife_s * source.fps);
   const bool anchor_root = params.root == RootMode::Anchor;
   const double anchor_factor = anchor_root ? std::exp(-std::log(2.0) / (params.root_halflife_s * source.fps)) : 1.0;
+  // The pull back never makes the root step further than the capture's own largest step: it
+  // spends at most half of what the current source step leaves of it.
+  const double root_step_limit = largest_root_step(source, continues);
 
   Offsets off(joints);
   Pose dst, previous, old_pose;
@@ -144,7 +166,11 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
     const SourceClock& c = clock[i];
     reader.sample(c.time, dst);
     if (i > 0) {
-      off.decay(y, anchor_factor);
+      off.decay(y);
+      if (anchor_root && c.run == clock[i - 1].run) {  // a transition frame has its own step
+        const glm::dvec3 d = dst.tr[0] - previous.tr[0];
+        off.relax_anchor(anchor_factor, 0.5 * std::max(0.0, root_step_limit - std::hypot(d.x, d.z)));
+      }
       if (c.run != clock[i - 1].run) {
         // Where the old source would have gone: on along its own capture when it can, else on
         // at its last velocity.
@@ -173,6 +199,10 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
     }
     previous = dst;
     reader.velocity(c.time, c.rate, dst, previous_vel);
+  }
+  if (params.foot_lock) {
+    const std::vector<Leg> legs = find_legs(source.skeleton);
+    if (!legs.empty()) foot_lock(out, clock, legs, foot_tracks(source, continues, legs), params.halflife_s);
   }
   return out;
 }

@@ -9,6 +9,8 @@
 #include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/metrics/evaluate.h"
+#include "engine/metrics/naturalness.h"
 #include "engine/motion/bvh.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
@@ -81,6 +83,18 @@ TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
   };
   EXPECT_NE(motion_bytes(1), motion_bytes(2));
   EXPECT_EQ(motion_bytes(3), motion_bytes(3));
+}
+
+// With the default (natural) planner too: near-equal candidates are drawn with the seed.
+TEST_F(SynthPipeline, DefaultPlannerVariesWithTheSeed) {
+  const MotionGraph g = graph_load(file("ref.gmg"));
+  Config cfg;
+  const SpeechEvents ev =
+      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  cfg.seed = 1;
+  const std::string a = bvh_format(reenact_events(g, ev, cfg).motion);
+  cfg.seed = 2;
+  EXPECT_NE(a, bvh_format(reenact_events(g, ev, cfg).motion));
 }
 
 TEST_F(SynthPipeline, ReportCountsEverySubsequence) {
@@ -198,6 +212,32 @@ TEST(PipelineRealData, GeneaSkeletonWithPositionChannelsOnEveryJoint) {
       const glm::dvec3 t = back.translation(f, j);
       EXPECT_TRUE(glm::all(glm::greaterThanEqual(t, lo - slack)) && glm::all(glm::lessThanEqual(t, hi + slack)))
           << ref.skeleton.joints[j].name << " frame " << f;
+    }
+  }
+}
+
+// The natural-motion targets on the real clip (SPEC "natural transitions"): reenacting new speech of
+// the BEAT2 speaker from 2_scott_0_1_1, every output stays as smooth as the capture: largest step
+// at most 1.5x the reference's 99.9th-percentile step, root-relative jerk at most 2x the
+// reference's, fewer than 0.5 % of frames above that step, root speed within 25 %.
+TEST(PipelineRealData, ReenactedScottIsAsNaturalAsTheCapture) {
+  GMG_REQUIRE_SHARED_DATA();
+  const std::string d = gmg::testing::shared_data_dir() + "/beat2_scott/";
+  Config cfg;
+  const MotionGraph g =
+      graph_build_from_files({{d + "2_scott_0_1_1.bvh", {d + "2_scott_0_1_1.wav", d + "2_scott_0_1_1.TextGrid"}}}, cfg);
+  const double scale = length_unit_to_cm(g.motion.skeleton);
+  const Eigen::MatrixXd ref = motion_forward_kinematics(g.motion) * scale;
+  const NaturalnessReference nr = naturalness_reference(ref, g.motion.fps);
+  for (const char* test : {"2_scott_0_2_2", "2_scott_0_3_3"}) {
+    for (std::uint64_t seed : {1, 2}) {
+      cfg.seed = seed;
+      const Reenactment r = reenact(g, {d + test + ".wav", d + test + ".TextGrid"}, cfg, "scott");
+      const Naturalness n = naturalness(motion_forward_kinematics(r.motion) * scale, g.motion.fps, nr);
+      EXPECT_LE(n.jump_ratio, 1.5) << test << " seed " << seed;
+      EXPECT_LE(n.jerk_ratio, 2.0) << test << " seed " << seed;
+      EXPECT_LT(n.step_share, 0.005) << test << " seed " << seed;
+      EXPECT_NEAR(n.root_speed_ratio, 1.0, 0.25) << test << " seed " << seed;
     }
   }
 }

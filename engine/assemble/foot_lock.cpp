@@ -1,0 +1,235 @@
+#include "engine/assemble/foot_lock.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/assemble/inertialize.h"
+#include "engine/core/strings.h"
+#include "engine/motion/rotation.h"
+
+namespace gmg {
+namespace {
+
+constexpr double kContactSpeed = 0.15;   // leg lengths per second
+constexpr double kContactHeight = 0.10;  // leg lengths above the run's lowest point
+constexpr int kMinRun = 3;               // frames: shorter contacts or gaps are noise
+
+bool names_a_foot(const std::string& name) {
+  const std::string n = ascii_lower(name);
+  return n.find("ankle") != std::string::npos || n.find("foot") != std::string::npos;
+}
+
+// Joints from the root down to j.
+std::vector<int> chain_to(const Skeleton& s, int j) {
+  std::vector<int> chain;
+  for (int k = j; k >= 0; k = s.joints[static_cast<std::size_t>(k)].parent) chain.push_back(k);
+  std::reverse(chain.begin(), chain.end());
+  return chain;
+}
+
+// World rotation and position of every joint of `chain` at frame f.
+void chain_world(const Motion& m, int f, const std::vector<int>& chain, std::vector<glm::dquat>& rot,
+                 std::vector<glm::dvec3>& pos) {
+  rot.resize(chain.size());
+  pos.resize(chain.size());
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    const glm::dquat& q = m.rotation(f, chain[k]);
+    const glm::dvec3& t = m.translation(f, chain[k]);
+    if (k == 0) {
+      rot[k] = q;
+      pos[k] = t;
+    } else {
+      pos[k] = pos[k - 1] + rot[k - 1] * t;
+      rot[k] = rot[k - 1] * q;
+    }
+  }
+}
+
+// Fills gaps and removes runs of `value` shorter than kMinRun.
+void drop_short_runs(std::vector<char>& flags, char value) {
+  for (std::size_t i = 0; i < flags.size();) {
+    std::size_t j = i;
+    while (j < flags.size() && flags[j] == flags[i]) ++j;
+    if (flags[i] == value && j - i < static_cast<std::size_t>(kMinRun))
+      std::fill(flags.begin() + static_cast<std::ptrdiff_t>(i), flags.begin() + static_cast<std::ptrdiff_t>(j),
+                static_cast<char>(!value));
+    i = j;
+  }
+}
+
+glm::dquat rotation_between(const glm::dvec3& from, const glm::dvec3& to) {
+  const glm::dvec3 a = glm::normalize(from), b = glm::normalize(to);
+  const glm::dvec3 axis = glm::cross(a, b);
+  const double s = glm::length(axis);
+  const double angle = std::atan2(s, glm::dot(a, b));
+  if (s < 1e-12) return glm::dquat(1.0, 0.0, 0.0, 0.0);
+  return glm::angleAxis(angle, axis / s);
+}
+
+// Two-joint IK: moves the leg's ankle (chain's last three joints are hip, knee, ankle) to `target`
+// and gives the ankle the world orientation `ankle_world`. Bends the knee in its own plane to the
+// reach the target needs, then swings the leg about the hip.
+void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& target, const glm::dquat& ankle_world) {
+  std::vector<glm::dquat> wr;
+  std::vector<glm::dvec3> wp;
+  chain_world(m, f, chain, wr, wp);
+  const std::size_t n = chain.size();
+  const glm::dvec3 a = wp[n - 3], b = wp[n - 2], c = wp[n - 1];
+  const double lab = glm::length(b - a), lcb = glm::length(c - b);
+  if (lab < 1e-9 || lcb < 1e-9) return;
+  const double lat = std::clamp(glm::length(target - a), std::abs(lab - lcb) + 1e-6, lab + lcb - 1e-6);
+  glm::dquat knee_turn(1.0, 0.0, 0.0, 0.0);
+  const glm::dvec3 normal = glm::cross(a - b, c - b);
+  if (glm::length(normal) > 1e-9 * lab * lcb) {
+    const double now = std::acos(std::clamp(glm::dot(glm::normalize(a - b), glm::normalize(c - b)), -1.0, 1.0));
+    const double want = std::acos(std::clamp((lab * lab + lcb * lcb - lat * lat) / (2.0 * lab * lcb), -1.0, 1.0));
+    knee_turn = glm::angleAxis(want - now, glm::normalize(normal));
+  }
+  const glm::dvec3 c1 = b + knee_turn * (c - b);
+  const glm::dquat swing = rotation_between(c1 - a, target - a);
+  const glm::dquat hip_world = swing * wr[n - 3];
+  const glm::dquat knee_world = swing * knee_turn * wr[n - 2];
+  const glm::dquat parent_world = n >= 4 ? wr[n - 4] : glm::dquat(1.0, 0.0, 0.0, 0.0);
+  m.rotations[m.index(f, chain[n - 3])] = glm::normalize(glm::conjugate(parent_world) * hip_world);
+  m.rotations[m.index(f, chain[n - 2])] = glm::normalize(glm::conjugate(hip_world) * knee_world);
+  m.rotations[m.index(f, chain[n - 1])] = glm::normalize(glm::conjugate(knee_world) * ankle_world);
+}
+
+}  // namespace
+
+std::vector<Leg> find_legs(const Skeleton& s) {
+  std::vector<Leg> legs;
+  for (int j = 0; j < s.joint_count(); ++j) {
+    if (!names_a_foot(s.joints[static_cast<std::size_t>(j)].name)) continue;
+    bool topmost = true;
+    for (int k = s.joints[static_cast<std::size_t>(j)].parent; k >= 0; k = s.joints[static_cast<std::size_t>(k)].parent)
+      topmost = topmost && !names_a_foot(s.joints[static_cast<std::size_t>(k)].name);
+    if (!topmost) continue;
+    Leg leg;
+    leg.ankle = j;
+    leg.knee = s.joints[static_cast<std::size_t>(j)].parent;
+    leg.hip = leg.knee >= 0 ? s.joints[static_cast<std::size_t>(leg.knee)].parent : -1;
+    if (leg.hip < 0 || s.joints[static_cast<std::size_t>(leg.hip)].parent < 0) continue;
+    leg.length = glm::length(s.joints[static_cast<std::size_t>(leg.knee)].offset) +
+                 glm::length(s.joints[static_cast<std::size_t>(leg.ankle)].offset);
+    if (leg.length > 0.0) legs.push_back(leg);
+  }
+  if (legs.size() != 2) legs.clear();
+  return legs;
+}
+
+std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>& continues,
+                                   const std::vector<Leg>& legs) {
+  std::vector<FootTrack> out;
+  std::vector<glm::dquat> wr;
+  std::vector<glm::dvec3> wp;
+  for (const Leg& leg : legs) {
+    const std::vector<int> chain = chain_to(source.skeleton, leg.ankle);
+    FootTrack track;
+    track.pos.resize(static_cast<std::size_t>(source.frame_count));
+    track.rot.resize(static_cast<std::size_t>(source.frame_count));
+    for (int f = 0; f < source.frame_count; ++f) {
+      chain_world(source, f, chain, wr, wp);
+      track.pos[static_cast<std::size_t>(f)] = wp.back();
+      track.rot[static_cast<std::size_t>(f)] = wr.back();
+    }
+    const std::vector<glm::dvec3>& p = track.pos;
+    std::vector<char> contact(static_cast<std::size_t>(source.frame_count), 0);
+    for (int first = 0; first < source.frame_count;) {
+      int last = first;  // the capture run [first, last]
+      while (last + 1 < source.frame_count && continues[static_cast<std::size_t>(last)]) ++last;
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int f = first; f <= last; ++f) lowest = std::min(lowest, p[static_cast<std::size_t>(f)].y);
+      for (int f = first; f <= last; ++f) {
+        const int g = f > first ? f - 1 : std::min(f + 1, last);
+        const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * source.fps;
+        contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg.length &&
+                                               p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg.length;
+      }
+      first = last + 1;
+    }
+    drop_short_runs(contact, 0);  // fill short gaps first: a planted foot's noise
+    drop_short_runs(contact, 1);
+    track.contact = std::move(contact);
+    out.push_back(std::move(track));
+  }
+  return out;
+}
+
+namespace {
+
+// The source ankle at a fractional source time (the next frame when the capture continues).
+void track_at(const FootTrack& t, double time, glm::dvec3& pos, glm::dquat& rot) {
+  const std::size_t f = static_cast<std::size_t>(std::floor(time));
+  const double a = time - static_cast<double>(f);
+  const std::size_t g = a > 0.0 && f + 1 < t.pos.size() ? f + 1 : f;
+  pos = (1.0 - a) * t.pos[f] + a * t.pos[g];
+  rot = g == f ? t.rot[f] : slerp_shortest(t.rot[f], t.rot[g], a);
+}
+
+}  // namespace
+
+void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::vector<Leg>& legs,
+               const std::vector<FootTrack>& tracks, double halflife_s) {
+  const double y = spring_damping(halflife_s * out.fps);
+  std::vector<glm::dquat> wr;
+  std::vector<glm::dvec3> wp;
+  for (std::size_t l = 0; l < legs.size(); ++l) {
+    const Leg& leg = legs[l];
+    const FootTrack& track = tracks[l];
+    const std::vector<int> chain = chain_to(out.skeleton, leg.ankle);
+    bool locked = false;
+    // While anchored: where the foot is shown, moved each frame by the captured foot's own motion
+    // (not across a transition). On release, offsets in position and orientation that decay.
+    glm::dvec3 anchor(0.0), offset(0.0), offset_vel(0.0), previous(0.0), src_previous(0.0);
+    glm::dquat anchor_rot(1.0, 0.0, 0.0, 0.0), previous_rot = anchor_rot, src_previous_rot = anchor_rot;
+    glm::dvec3 rot_offset(0.0), rot_offset_vel(0.0);
+    for (int i = 0; i < out.frame_count; ++i) {
+      const SourceClock& c = clock[static_cast<std::size_t>(i)];
+      chain_world(out, i, chain, wr, wp);
+      const glm::dvec3 hip = wp[wp.size() - 3], foot = wp.back();
+      const glm::dquat foot_rot = wr.back();
+      glm::dvec3 src;
+      glm::dquat src_rot;
+      track_at(track, c.time, src, src_rot);
+      const bool same_run = i > 0 && c.run == clock[static_cast<std::size_t>(i) - 1].run;
+      const bool contact = track.contact[static_cast<std::size_t>(std::floor(c.time))] != 0;
+      const glm::dvec3 velocity = i > 0 ? foot - previous : glm::dvec3(0.0);
+      const glm::dvec3 spin = i > 0 ? quat_to_expmap(foot_rot * glm::conjugate(previous_rot)) : glm::dvec3(0.0);
+      if (locked && same_run) {
+        anchor += src - src_previous;
+        anchor_rot = glm::normalize((src_rot * glm::conjugate(src_previous_rot)) * anchor_rot);
+      }
+      previous = foot;
+      previous_rot = foot_rot;
+      src_previous = src;
+      src_previous_rot = src_rot;
+      if (!locked) {
+        spring_decay(offset, offset_vel, y, 1.0);
+        spring_decay(rot_offset, rot_offset_vel, y, 1.0);
+      }
+      if (contact && !locked) {
+        locked = true;
+        anchor = foot + offset;  // where the foot is shown now
+        anchor_rot = expmap_to_quat(rot_offset) * foot_rot;
+      }
+      // An anchor the leg can no longer reach (the body moved on) is released too. Standing legs
+      // are nearly straight (99.9 % of their length on the test skeleton), so only a target
+      // beyond full reach counts.
+      if (locked && (!contact || glm::length(anchor - hip) > leg.length)) {
+        locked = false;
+        offset = anchor - foot;  // the shown foot stays put this frame...
+        offset_vel = -velocity;  // ...and at rest, then follows the capture again
+        rot_offset = quat_to_expmap(anchor_rot * glm::conjugate(foot_rot));
+        rot_offset_vel = -spin;
+      }
+      const glm::dvec3 target = locked ? anchor : foot + offset;
+      const glm::dquat target_rot = locked ? anchor_rot : expmap_to_quat(rot_offset) * foot_rot;
+      if (locked || glm::length(offset) > 1e-9 * leg.length || glm::length(rot_offset) > 1e-9)
+        leg_ik(out, i, chain, target, target_rot);
+    }
+  }
+}
+
+}  // namespace gmg

@@ -1,0 +1,96 @@
+// The natural planner's junction cost: start nodes near the pose the output would continue into.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/quaternion.hpp>
+
+#include "search/junction.h"
+#include "search/planner.h"
+
+namespace gmg {
+namespace {
+
+// A root and a hand 10 units away; the root turns about Z by angle[f], so the hand's pose depends
+// on the frame. Natural edges everywhere except out of the break nodes; no unnatural edges.
+MotionGraph posed_graph(const std::vector<double>& angle, const std::vector<int>& onsets,
+                        const std::vector<int>& breaks) {
+  Skeleton sk;
+  Joint root;
+  root.name = "root";
+  root.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
+  Joint hand;
+  hand.name = "hand";
+  hand.parent = 0;
+  hand.offset = glm::dvec3(10, 0, 0);
+  sk.joints = {root, hand};
+  const int n = static_cast<int>(angle.size());
+  MotionGraph g;
+  g.motion = motion_rest(sk, 30.0, n);
+  for (int f = 0; f < n; ++f)
+    g.motion.rotations[g.motion.index(f, 0)] = glm::angleAxis(angle[static_cast<std::size_t>(f)], glm::dvec3(0, 0, 1));
+  g.clips = {{"posed", 0, n}};
+  g.graph = GraphStorage(static_cast<std::size_t>(n));
+  for (int f : onsets) g.graph[static_cast<std::size_t>(f)].kinds |= kOnsetNode;
+  for (int f : breaks) g.graph[static_cast<std::size_t>(f)].kinds |= kBreakNode;
+  for (int f = 0; f + 1 < n; ++f)
+    if (!(g.node(f).kinds & kBreakNode))
+      boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+  return g;
+}
+
+// Frames 0..19 hold the pose of angle 0 and end in a break; frames 20..59 hold angle pi (far), frames
+// 60..99 angle 0 again (near). Onsets 30, 40 and 70, 80 give the two candidates 30 and 70 the same
+// rhythm (l_feat 1: the next key 10 frames on). The first subsequence is one frame long and takes
+// key 18 (its next key, 19, is one frame on); the second (10 frames) cannot continue past the break
+// at 19, so it starts afresh: from 30 or from 70, equally good but for the pose.
+TEST(Junction, PlannerPicksTheStartNearThePreviousEnd) {
+  std::vector<double> angle(100, 0.0);
+  for (int f = 20; f < 60; ++f) angle[static_cast<std::size_t>(f)] = 3.14159;
+  const MotionGraph g = posed_graph(angle, {18, 30, 40, 70, 80}, {19, 99});
+  SearchParams p;
+  p.l_npaths = 2;  // the two best key nodes only: no random frames join the beam
+  p.l_feat = 1;
+  p.w_full = {1.0};
+  p.merge_below = 0;
+  p.variety = 0.0;
+  const std::vector<Subsequence> subs = {{0, 1, Termination::Rhythm, ""}, {1, 10, Termination::Rhythm, ""}};
+  std::mt19937_64 rng(1);
+  const Plan natural = plan_reenactment(g, subs, p, rng);
+  ASSERT_EQ(natural.segments.size(), 2u);
+  EXPECT_EQ(natural.segments[0].path, std::vector<int>{18});
+  ASSERT_TRUE(natural.segments[1].accepted);
+  EXPECT_EQ(natural.segments[1].path.front(), 70);
+  EXPECT_EQ(natural.segments[1].junction_from, 19);
+  EXPECT_NEAR(natural.segments[1].junction_gap, 0.0, 1e-9);
+  // Without the junction cost (the paper's planner) the tie goes to the earlier key node: 30.
+  p.planner = PlannerMode::Paper;
+  const Plan paper = plan_reenactment(g, subs, p, rng);
+  EXPECT_EQ(paper.segments[1].path.front(), 30);
+  EXPECT_NEAR(paper.segments[1].junction_gap, 20.0, 1e-4);  // the hand on the other side
+}
+
+TEST(Junction, CostIsThePoseDistanceOverTheMeanTransitionWeight) {
+  std::vector<double> angle(40, 0.0);
+  for (int f = 0; f < 40; ++f) angle[static_cast<std::size_t>(f)] = 0.05 * f;
+  MotionGraph g = posed_graph(angle, {}, {39});
+  boost::add_edge(5, 30, EdgeInfo{2.0, false}, g.graph);
+  boost::add_edge(6, 20, EdgeInfo{4.0, false}, g.graph);
+  JunctionCost j(g);
+  EXPECT_DOUBLE_EQ(j.normaliser(), 3.0);
+  // Frames 10 and 20: the hand 10 away at angles 0.5 and 1.0 (chord 2 * 10 * sin(0.25)), both moving
+  // at 0.05 rad per frame (velocities of equal length 2 * 10 * sin(0.025), 0.5 rad apart).
+  const double chord = 20.0 * std::sin(0.25);
+  const double speed = 20.0 * std::sin(0.025);
+  const double velocity_gap = 2.0 * speed * std::sin(0.25);
+  EXPECT_NEAR(j.cost(10, 20), (chord + velocity_gap) / 3.0, 1e-9);
+  EXPECT_EQ(j.cost(10, 10), 0.0);
+  std::vector<double> costs;
+  j.costs(10, {10, 20, 30}, costs);
+  EXPECT_EQ(costs[0], 0.0);
+  EXPECT_NEAR(costs[1], j.cost(10, 20), 1e-12);
+  EXPECT_NEAR(j.largest_joint_gap(10, 20), chord, 1e-9);
+}
+
+}  // namespace
+}  // namespace gmg
