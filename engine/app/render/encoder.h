@@ -29,7 +29,7 @@ struct EncoderSettings {
   std::string audio;          // WAV muxed as AAC; "" = no audio stream
   int width = 0, height = 0;  // even
   double fps = 30;
-  int crf = 20;                     // x264 quality (lower is better)
+  int crf = 20;                     // x264 quality: lower is better, 0 is lossless
   std::string preset = "veryfast";  // x264 speed
 };
 

@@ -29,7 +29,7 @@ struct RenderOptions {
   View view = View::Front;
   int width = 640, height = 480;  // pixels per figure; even, 160x120 to 3840x2160
   std::string ffmpeg = "ffmpeg";  // the tool, found on PATH unless it contains a '/'
-  int crf = 20;
+  int crf = 20;                   // x264 quality: lower is better, 0 is lossless
   std::string preset = "veryfast";
 };
 
