@@ -457,6 +457,22 @@ TEST(RenderFigure, BonesComeFromTheSkeletonWithoutFaceHelpersOrAWorldRoot) {
   EXPECT_EQ(render::joint_side("b_r_wrist"), -1);
 }
 
+TEST(RenderFigure, TheNoseIsInFrontOfTheHeadAndTurnsWithIt) {
+  // The synthetic speaker faces +Z in its rest pose, in centimetres; the head sphere has radius 10,
+  // its centre 8 above the head joint, the nose 9.5 in front of that.
+  Motion m = motion_rest(synth_skeleton(), 30, 2);
+  const int head = m.skeleton.find("Head");
+  m.rotations[m.index(1, head)] = glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0));
+  const render::Figure f = render::figure_from_motion(m);
+  ASSERT_EQ(f.head, head);
+  ASSERT_GE(f.nose, 0);
+  for (int frame : {0, 1}) {
+    const glm::dvec3 d = render::figure_point(f, frame, f.nose) - render::figure_point(f, frame, head);
+    const glm::dvec3 expected = frame == 0 ? glm::dvec3(0, 8, 9.5) : glm::dvec3(9.5, 8, 0);  // +90 deg about Y: z -> x
+    EXPECT_NEAR(glm::length(d - expected), 0.0, 1e-9) << frame;
+  }
+}
+
 TEST(RenderFigure, MetresAreDrawnInCentimetres) {
   Skeleton s;
   Joint root;

@@ -47,7 +47,9 @@ Camera camera_fit(const Box& box, const glm::dvec3& facing, View view, const Rec
   c.up = glm::cross(c.back, c.right);
   const glm::dvec3 center = (box.lo + box.hi) * 0.5;
   const double diagonal = std::max(glm::length(box.hi - box.lo), 1.0);
-  c.eye = center + c.back * (2.0 * diagonal);
+  // Two diagonals away: mild perspective. From above, the body's height is all depth, so the eye
+  // keeps further back or the head would dwarf the feet.
+  c.eye = center + c.back * ((view == View::Top ? 3.5 : 2.0) * diagonal);
 
   // Fit the projected corners: the projection of a box in front of the eye lies inside the
   // projection of its corners' hull.

@@ -53,7 +53,7 @@ struct Camera {
 // has none). Front looks at the person's face from slightly above, so their left hand is on the
 // right of the picture; Side looks at their left side (they face left); Top looks straight down
 // with their front towards the bottom of the picture. The perspective is mild (the eye is two box
-// diagonals away), enough for near parts to look larger. Requires a non-empty box.
+// diagonals away, three and a half from above), enough for near parts to look larger. Requires a non-empty box.
 Camera camera_fit(const Box& box, const glm::dvec3& facing, View view, const Rect& area, double margin = 0.05);
 
 ScreenPoint camera_project(const Camera& camera, const glm::dvec3& p);

@@ -26,22 +26,24 @@ bool is_head(const std::string& lower) {
   return (lower == "head" || ends_with_ci(lower, "_head") || ends_with_ci(lower, "head")) && !is_helper_end(lower);
 }
 
-// A joint and its End Site as extra joints (offset, no rotation), so forward kinematics gives
-// the tips of hands, feet and fingers too. Their parents precede them, as FK requires.
-Motion with_end_sites(const Motion& m, std::vector<int>* end_owner) {
+// Extra points carried by joints: each is an extra joint (parent, offset in file units, no
+// rotation), so forward kinematics places it. Their parents precede them, as FK requires.
+struct ExtraPoint {
+  int parent = 0;
+  glm::dvec3 offset{0.0};
+};
+
+Motion with_extra_points(const Motion& m, const std::vector<ExtraPoint>& extras) {
   Motion out;
   out.skeleton = m.skeleton;
   out.fps = m.fps;
   out.frame_count = m.frame_count;
-  for (int j = 0; j < m.joint_count(); ++j) {
-    const Joint& joint = m.skeleton.joints[static_cast<std::size_t>(j)];
-    if (!joint.has_end_site) continue;
+  for (const ExtraPoint& e : extras) {
     Joint tip;
-    tip.name = joint.name + " End Site";
-    tip.parent = j;
-    tip.offset = joint.end_site;
+    tip.name = "extra point";
+    tip.parent = e.parent;
+    tip.offset = e.offset;
     out.skeleton.joints.push_back(tip);
-    end_owner->push_back(j);
   }
   const int joints = out.joint_count();
   out.rotations.assign(static_cast<std::size_t>(m.frame_count) * joints, glm::dquat(1, 0, 0, 0));
@@ -57,6 +59,24 @@ Motion with_end_sites(const Motion& m, std::vector<int>* end_owner) {
     }
   }
   return out;
+}
+
+// From the person's right to their left: the mean of the left joints minus that of the right.
+glm::dvec3 lateral_at(const Eigen::MatrixXd& points, int frame, const std::vector<int>& side) {
+  glm::dvec3 left(0.0), right(0.0);
+  int nl = 0, nr = 0;
+  const std::size_t count = std::min(side.size(), static_cast<std::size_t>(points.cols() / 3));
+  for (std::size_t p = 0; p < count; ++p) {
+    const glm::dvec3 q(points(frame, 3 * p), points(frame, 3 * p + 1), points(frame, 3 * p + 2));
+    if (side[p] > 0) left += q, ++nl;
+    if (side[p] < 0) right += q, ++nr;
+  }
+  return nl > 0 && nr > 0 ? left / double(nl) - right / double(nr) : glm::dvec3(0.0);
+}
+
+glm::dvec3 forward_of(const glm::dvec3& lateral) {
+  const glm::dvec3 forward = glm::cross(lateral, glm::dvec3(0, 1, 0));
+  return glm::length(forward) > 1e-9 ? glm::normalize(forward) : glm::dvec3(0, 0, 1);
 }
 
 // Which bones to draw (see figure.h): everything but the face, helper end points, and a world
@@ -114,24 +134,41 @@ Figure figure_from_motion(const Motion& m) {
   Figure f;
   f.fps = m.fps;
   f.frame_count = m.frame_count;
-  std::vector<int> end_owner;
-  f.points = motion_forward_kinematics(with_end_sites(m, &end_owner)) * length_unit_to_cm(m.skeleton);
   for (const Joint& j : m.skeleton.joints) {
     f.radius_cm.push_back(joint_radius_cm(j.name));
     f.side.push_back(joint_side(j.name));
   }
-  for (int owner : end_owner) {
-    f.radius_cm.push_back(0.8 * f.radius_cm[static_cast<std::size_t>(owner)]);
-    f.side.push_back(f.side[static_cast<std::size_t>(owner)]);
-  }
-  for (int j = 0; j < m.joint_count(); ++j) {
+  for (int j = 0; j < m.joint_count() && f.head < 0; ++j) {
     if (is_head(ascii_lower(m.skeleton.joints[static_cast<std::size_t>(j)].name))) {
       f.head = j;
       f.head_base = m.skeleton.joints[static_cast<std::size_t>(j)].parent;
-      break;
     }
   }
   if (f.head_base < 0) f.head = -1;  // a head without a neck has no direction
+  std::vector<ExtraPoint> extras;
+  std::vector<int> end_owner;
+  for (int j = 0; j < m.joint_count(); ++j) {
+    const Joint& joint = m.skeleton.joints[static_cast<std::size_t>(j)];
+    if (!joint.has_end_site) continue;
+    extras.push_back({j, joint.end_site});
+    end_owner.push_back(j);
+    f.radius_cm.push_back(0.8 * f.radius_cm[static_cast<std::size_t>(j)]);
+    f.side.push_back(f.side[static_cast<std::size_t>(j)]);
+  }
+  const double scale = length_unit_to_cm(m.skeleton);
+  if (f.head >= 0) {
+    // The nose shows which way the head turns. In the rest pose every rotation is the identity,
+    // so an offset along the rest pose's forward direction is the face's direction in the head's
+    // own frame.
+    const Eigen::MatrixXd rest = motion_forward_kinematics(motion_rest(m.skeleton, m.fps, 1));
+    const glm::dvec3 forward = forward_of(lateral_at(rest, 0, f.side));
+    const double r = f.head_radius_cm / scale;
+    extras.push_back({f.head, glm::dvec3(0, 0.8 * r, 0) + forward * (0.95 * r)});
+    f.nose = m.joint_count() + static_cast<int>(end_owner.size());
+    f.radius_cm.push_back(0.22 * f.head_radius_cm);
+    f.side.push_back(0);
+  }
+  f.points = motion_forward_kinematics(with_extra_points(m, extras)) * scale;
   choose_bones(m.skeleton, end_owner, f);
   return f;
 }
@@ -159,8 +196,10 @@ Box figure_box(const Figure& f) {
       }
     }
     if (f.head >= 0) {
-      const glm::dvec3 c = figure_head_center(f, t);
+      const glm::dvec3 c = figure_head_center(f, t), nose = figure_point(f, t, f.nose);
       box.add(c - glm::dvec3(f.head_radius_cm)), box.add(c + glm::dvec3(f.head_radius_cm));
+      box.add(nose - glm::dvec3(f.radius_cm[static_cast<std::size_t>(f.nose)]));
+      box.add(nose + glm::dvec3(f.radius_cm[static_cast<std::size_t>(f.nose)]));
     }
   }
   return box;
@@ -169,17 +208,8 @@ Box figure_box(const Figure& f) {
 glm::dvec3 figure_facing(const Figure& f) {
   glm::dvec3 lateral(0.0);
   const int step = std::max(1, f.frame_count / 200);
-  for (int t = 0; t < f.frame_count; t += step) {
-    glm::dvec3 left(0.0), right(0.0);
-    int nl = 0, nr = 0;
-    for (std::size_t p = 0; p < f.side.size(); ++p) {
-      if (f.side[p] > 0) left += figure_point(f, t, static_cast<int>(p)), ++nl;
-      if (f.side[p] < 0) right += figure_point(f, t, static_cast<int>(p)), ++nr;
-    }
-    if (nl > 0 && nr > 0) lateral += left / double(nl) - right / double(nr);
-  }
-  const glm::dvec3 forward = glm::cross(lateral, glm::dvec3(0, 1, 0));
-  return glm::length(forward) > 1e-9 ? glm::normalize(forward) : glm::dvec3(0, 0, 1);
+  for (int t = 0; t < f.frame_count; t += step) lateral += lateral_at(f.points, t, f.side);
+  return forward_of(lateral);
 }
 
 }  // namespace gmg::render

@@ -26,12 +26,13 @@ struct Figure {
   double fps = 30;
   int frame_count = 0;
   // World positions in cm, frame_count x 3 * point count: the joints (BVH order), then one point
-  // per End Site (in joint order).
+  // per End Site (in joint order), then the nose when there is a head.
   Eigen::MatrixXd points;
   std::vector<double> radius_cm;  // per point: the capsule radius at that point
   std::vector<int> side;          // per point: +1 the person's left, -1 right, 0 the middle
   std::vector<Bone> bones;        // drawn bones
   int head = -1, head_base = -1;  // the head joint and its parent; -1 when there is none
+  int nose = -1;                  // a point on the front of the head (it turns with the head); -1 without a head
   double head_radius_cm = 10.0;
 };
 

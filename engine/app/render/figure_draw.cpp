@@ -165,6 +165,12 @@ void draw_figure(cairo_t* cr, const Camera& camera, const Figure& f, int frame, 
     h.color = style.color;
     h.depth = h.a.depth;
     parts.push_back(h);
+    Capsule nose = h;
+    nose.a = camera_project(camera, figure_point(f, frame, f.nose));
+    nose.ra = camera_pixels(camera, f.radius_cm[static_cast<std::size_t>(f.nose)], nose.a.depth);
+    nose.color = style.color * 0.8;
+    nose.depth = nose.a.depth;
+    parts.push_back(nose);
   }
   // Painter's order, far to near; stable so equal depths keep the skeleton's order.
   std::stable_sort(parts.begin(), parts.end(), [](const Capsule& x, const Capsule& y) { return x.depth > y.depth; });
