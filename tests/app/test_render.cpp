@@ -105,6 +105,7 @@ struct CliRun {
 CliRun run_cli(std::vector<std::string> args) {
   args.insert(args.begin(), "gmg");
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   CliRun r;
@@ -321,8 +322,8 @@ int red_pixels(const std::string& frame, int stride, int x0, int y0, int x1, int
   int n = 0;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
-      const auto* p =
-          reinterpret_cast<const unsigned char*>(frame.data()) + static_cast<std::size_t>(y) * stride + 4 * x;
+      const auto* p = reinterpret_cast<const unsigned char*>(frame.data()) + static_cast<std::size_t>(y) * stride +
+                      4 * static_cast<std::size_t>(x);
       if (p[2] > 180 && p[1] < 80 && p[0] < 80) ++n;  // B, G, R in memory
     }
   return n;
@@ -447,7 +448,7 @@ TEST(RenderFigure, BonesComeFromTheSkeletonWithoutFaceHelpersOrAWorldRoot) {
   EXPECT_EQ(bones, expected);
   EXPECT_EQ(f.head, 3);
   EXPECT_EQ(f.head_base, 2);
-  EXPECT_DOUBLE_EQ(f.points(0, 3 * 8), 73.0);  // end site: 20 + 28 + 25 cm along +X
+  EXPECT_DOUBLE_EQ(f.points(0, 24), 73.0);  // end site: 20 + 28 + 25 cm along +X
   EXPECT_EQ(f.side[6], 1);
   EXPECT_EQ(f.side[2], 0);
   EXPECT_GT(render::joint_radius_cm("Spine1"), render::joint_radius_cm("LeftForeArm"));

@@ -81,7 +81,9 @@ std::string find_executable(const std::string& name) {
   const char* path = std::getenv("PATH");
   if (path == nullptr) return "";
   for (const std::string& dir : split_trimmed(path, ':')) {
-    const std::string candidate = dir + "/" + name;
+    std::string candidate = dir;
+    candidate += '/';
+    candidate += name;
     if (is_executable_file(candidate)) return candidate;
   }
   return "";
@@ -111,6 +113,7 @@ VideoEncoder::VideoEncoder(const EncoderSettings& settings) : settings_(settings
   posix_spawn_file_actions_adddup2(&actions, log_fd, 2);
   const std::vector<std::string> args = ffmpeg_arguments(settings_);
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const int rc = posix_spawn(&pid_, settings_.ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);

@@ -174,7 +174,8 @@ Figure figure_from_motion(const Motion& m) {
 }
 
 glm::dvec3 figure_point(const Figure& f, int frame, int point) {
-  return {f.points(frame, 3 * point), f.points(frame, 3 * point + 1), f.points(frame, 3 * point + 2)};
+  const Eigen::Index c = 3 * static_cast<Eigen::Index>(point);
+  return {f.points(frame, c), f.points(frame, c + 1), f.points(frame, c + 2)};
 }
 
 glm::dvec3 figure_head_center(const Figure& f, int frame) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/glm.hpp>
+
 #include "engine/core/math.h"
 
 namespace gmg::render {
@@ -37,13 +39,12 @@ double text_advance(cairo_t* cr, const std::string& s) {
   return e.x_advance;
 }
 
-void badge(cairo_t* cr, double right, double top, const char* label, bool lit, double r, double g, double b,
-           double size) {
+void badge(cairo_t* cr, double right, double top, const char* label, bool lit, const glm::dvec3& color, double size) {
   set_font(cr, true, size);
   const double w = text_advance(cr, label) + 2.2 * size, h = 1.6 * size, x = right - w;
   rounded_rect(cr, x, top, w, h, h / 2);
   if (lit)
-    cairo_set_source_rgb(cr, r, g, b);
+    cairo_set_source_rgb(cr, color.r, color.g, color.b);
   else
     cairo_set_source_rgba(cr, 0.5, 0.5, 0.5, 0.18);
   cairo_fill(cr);
@@ -159,8 +160,8 @@ void draw_marker_strip(cairo_t* cr, const Markers& markers, double t, const Rect
 void draw_marker_badges(cairo_t* cr, const Markers& markers, double t, const Rect& panel, double font_size) {
   cairo_save(cr);
   const double right = panel.x + panel.w - 0.6 * font_size, top = panel.y + 0.5 * font_size;
-  badge(cr, right, top, "junction", badge_lit(markers.junctions_s, t), 0.88, 0.16, 0.14, font_size);
-  badge(cr, right, top + 2.0 * font_size, "onset", badge_lit(markers.onsets_s, t), 0.15, 0.62, 0.3, font_size);
+  badge(cr, right, top, "junction", badge_lit(markers.junctions_s, t), {0.88, 0.16, 0.14}, font_size);
+  badge(cr, right, top + 2.0 * font_size, "onset", badge_lit(markers.onsets_s, t), {0.15, 0.62, 0.3}, font_size);
   cairo_restore(cr);
 }
 
