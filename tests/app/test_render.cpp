@@ -9,6 +9,15 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <thread>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -18,8 +27,11 @@
 #include "engine/app/render/render.h"
 #include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/motion/bvh.h"
 #include "tests/test_support.h"
+
+extern char** environ;
 
 namespace gmg {
 namespace {
@@ -277,6 +289,41 @@ TEST_F(RenderVideo, AFailingFfmpegIsReportedWithItsMessageAndLeavesNoFile) {
     EXPECT_TRUE(contains(e.what(), dir.file("out.mp4") + ": ffmpeg")) << e.what();
     EXPECT_TRUE(contains(e.what(), "Unknown encoder libx264")) << e.what();
   }
+  EXPECT_EQ(folder_listing(dir.path()), before);
+}
+
+TEST_F(RenderVideo, AnInterruptedRenderLeavesNoFile) {
+  GMG_REQUIRE_FFMPEG();
+  SynthSpec spec;
+  spec.duration_s = 30;  // seconds of rendering: time to interrupt it
+  synth_write(synth_speaker(spec), dir.path().string(), "long");
+  const std::vector<std::string> before = folder_listing(dir.path());
+  gmg::testing::TempDir logs;
+  const std::string bvh = dir.file("long.bvh"), out = dir.file("out.mp4"), err = logs.file("err.txt");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> args = {GMG_BINARY, "render", bvh, "-o", out};
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  ASSERT_EQ(posix_spawn(&pid, GMG_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // Interrupt once ffmpeg has started writing its temporary file.
+  bool writing = false;
+  for (int i = 0; i < 1000 && !writing; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    for (const std::string& name : folder_listing(dir.path())) writing = writing || contains(name, ".tmp");
+  }
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(writing);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
+  EXPECT_TRUE(contains(read_file_bytes(err), "gmg: error: " + out + ": interrupted")) << read_file_bytes(err);
   EXPECT_EQ(folder_listing(dir.path()), before);
 }
 
