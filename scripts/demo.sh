@@ -2,7 +2,8 @@
 # The demo: sets up and builds, generates a procedural speaker (motion + speech + words),
 # builds its motion graph, and reenacts its gestures for a second, new utterance.
 # Output: demo_output/reenacted.bvh (open in Blender: File > Import > Motion Capture (.bvh)),
-# demo_output/report.json (how every subsequence was matched).
+# demo_output/report.json (how every subsequence was matched), demo_output/reenacted.mp4 (a video
+# of the result with its speech, captions and onset/junction markers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -19,6 +20,10 @@ echo "demo: reenacting"
 $gmg reenact --graph "$out/reference.gmg" --audio "$out/new_speech.wav" --transcript "$out/new_speech.tsv" \
   -o "$out/reenacted.bvh" --report "$out/report.json" --seed 7
 $gmg evaluate --generated "$out/reenacted.bvh" --audio "$out/new_speech.wav" --report "$out/report.json"
+echo "demo: rendering the result with its speech"
+$gmg render "$out/reenacted.bvh" --audio "$out/new_speech.wav" --transcript "$out/new_speech.tsv" \
+  --report "$out/report.json" -o "$out/reenacted.mp4"
 echo
 echo "demo: done. Reenacted motion: $out/reenacted.bvh (Blender: File > Import > Motion Capture (.bvh))"
+echo "      Video with its speech: $out/reenacted.mp4"
 echo "      Report: $out/report.json"

@@ -25,6 +25,7 @@ int cli_main(int argc, char** argv) {
   add_ablation_command(app);
   add_synth_command(app);
   add_config_command(app);
+  add_render_command(app);
 
   try {
     app.parse(argc, argv);

@@ -45,6 +45,7 @@ void add_evaluate_command(CLI::App& app);
 void add_ablation_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_config_command(CLI::App& app);
+void add_render_command(CLI::App& app);
 // add_batch_command: engine/app/batch/batch.h.
 
 }  // namespace gmg

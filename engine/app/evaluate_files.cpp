@@ -2,8 +2,8 @@
 
 #include "audio/wav.h"
 #include "engine/app/plot.h"
+#include "engine/app/report_facts.h"
 #include "engine/core/error.h"
-#include "engine/core/json.h"
 #include "engine/core/strings.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
@@ -12,48 +12,6 @@
 
 namespace gmg {
 namespace {
-
-// What a reenactment report says about how the output was made.
-struct ReportFacts {
-  nlohmann::json totals;
-  std::vector<int> source_frames;   // graph frames in output order
-  std::vector<double> junctions_s;  // output times where the source jumps
-};
-
-ReportFacts read_report(const std::string& path, double fps) {
-  const nlohmann::json rep = read_json_file(path);
-  if (!rep.is_object() || !rep.contains("totals") || !rep["totals"].is_object() ||
-      !rep["totals"].contains("failures") || !rep.contains("subsequences") || !rep["subsequences"].is_array())
-    throw Error(path + ": not a gmg reenactment report (no totals.failures or subsequences)");
-  ReportFacts f;
-  f.totals = rep["totals"];
-  int previous = -2;
-  for (const nlohmann::json& s : rep["subsequences"]) {
-    if (!s.is_object() || !s.contains("graph_ranges") || !s.contains("start_frame") || !s.contains("target_length") ||
-        !s["graph_ranges"].is_array() || !s["start_frame"].is_number_integer() ||
-        !s["target_length"].is_number_integer())
-      throw Error(path + ": a subsequence lacks start_frame, target_length or graph_ranges");
-    const int start = s["start_frame"].get<int>(), length = s["target_length"].get<int>();
-    std::vector<int> frames;
-    for (const nlohmann::json& r : s["graph_ranges"]) {
-      if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer() ||
-          r[1].get<long>() < r[0].get<long>() || r[1].get<long>() - r[0].get<long>() > 10000000)
-        throw Error(path + ": a graph range is not [first, last]");
-      for (int g = r[0].get<int>(); g <= r[1].get<int>(); ++g) frames.push_back(g);
-    }
-    // Output time of path index i: the path is resampled evenly onto the subsequence's frames.
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      const int before = i == 0 ? previous : frames[i - 1];
-      if (before != -2 && frames[i] != before + 1) {
-        const double x = frames.size() > 1 ? static_cast<double>(i) * (length - 1) / (frames.size() - 1) : 0.0;
-        f.junctions_s.push_back((start + x) / fps);
-      }
-    }
-    if (!frames.empty()) previous = frames.back();
-    f.source_frames.insert(f.source_frames.end(), frames.begin(), frames.end());
-  }
-  return f;
-}
 
 std::vector<Motion> read_reference(const std::string& path) {
   std::vector<Motion> clips;
@@ -88,7 +46,7 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   if (!in.audio.empty()) sound = audio::read_wav(in.audio);
   const std::vector<Motion> reference = in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference);
   ReportFacts facts;
-  if (!in.report.empty()) facts = read_report(in.report, generated.fps);
+  if (!in.report.empty()) facts = read_report_facts(in.report, generated.fps);
 
   EvaluateData data;
   data.generated = &generated;

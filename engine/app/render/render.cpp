@@ -1,0 +1,125 @@
+#include "engine/app/render/render.h"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+
+#include "engine/app/render/encoder.h"
+#include "engine/core/error.h"
+#include "engine/core/strings.h"
+
+namespace gmg::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+void check_output(const std::string& path) {
+  if (!ends_with_ci(path, ".mp4") && !ends_with_ci(path, ".mkv") && !ends_with_ci(path, ".mov"))
+    throw Error(path + ": the video must be a .mp4, .mkv or .mov file");
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw Error(path + ": the folder " + parent.string() + " does not exist");
+}
+
+volatile std::sig_atomic_t g_interrupted = 0;
+
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+// While a video is being made, Ctrl-C or a TERM ends the job through the error path, so the
+// temporary video is removed rather than left behind.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    g_interrupted = 0;
+    struct sigaction a {};
+    a.sa_handler = on_interrupt;
+    sigemptyset(&a.sa_mask);
+    ::sigaction(SIGINT, &a, &old_int_);
+    ::sigaction(SIGTERM, &a, &old_term_);
+  }
+  ~InterruptGuard() {
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+  // Throws once a signal came.
+  static void check(const std::string& output) {
+    if (g_interrupted) throw Error(output + ": interrupted; no video written");
+  }
+
+ private:
+  struct sigaction old_int_ {
+  }, old_term_{};
+};
+
+// A signal after a successful finish() changes nothing: the video is complete.
+void encode(const Scene& scene, const EncoderSettings& settings) {
+  InterruptGuard::check(settings.name);
+  VideoEncoder encoder(settings);
+  Canvas canvas(scene.width, scene.height);
+  try {
+    for (int f = 0; f < scene.frame_count; ++f) {
+      InterruptGuard::check(settings.name);
+      scene_draw(scene, f, canvas.context());
+      encoder.write_frame(canvas.pixels(), canvas.stride());
+    }
+    InterruptGuard::check(settings.name);
+    encoder.finish();
+  } catch (const Error&) {
+    InterruptGuard::check(settings.name);  // ffmpeg got the Ctrl-C too: say why it stopped
+    throw;
+  }
+}
+
+// Beside the output, so the final rename stays on one file system; same extension, so ffmpeg
+// picks the same container.
+std::string temporary_twin(const std::string& path) {
+  const fs::path p(path);
+  const fs::path name = p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string();
+  return (p.parent_path() / name).string();
+}
+
+}  // namespace
+
+RenderSummary render_video(const RenderInputs& in, const RenderOptions& options) {
+  check_output(in.output);
+  const InterruptGuard guard;
+  const std::string ffmpeg = find_executable(options.ffmpeg);
+  if (ffmpeg.empty())
+    throw Error(options.ffmpeg + ": not found" + (options.ffmpeg.find('/') == std::string::npos ? " on PATH" : "") +
+                ": gmg render encodes with the ffmpeg tool (Debian: apt-get install ffmpeg)");
+  const Scene scene = scene_load(in, options);
+
+  EncoderSettings e;
+  e.ffmpeg = ffmpeg;
+  e.output = temporary_twin(in.output);
+  e.name = in.output;
+  e.audio = in.audio;
+  e.width = scene.width;
+  e.height = scene.height;
+  e.fps = scene.fps;
+  e.crf = options.crf;
+  e.preset = options.preset;
+  encode(scene, e);
+  std::error_code ec;
+  fs::rename(e.output, in.output, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(e.output, ignored);
+    throw Error(in.output + ": cannot rename the finished video into place (" + ec.message() + ")");
+  }
+  RenderSummary r;
+  r.frames = scene.frame_count;
+  r.fps = scene.fps;
+  r.width = scene.width;
+  r.height = scene.height;
+  r.audio_s = scene.audio_s;
+  r.notes = scene.notes;
+  return r;
+}
+
+}  // namespace gmg::render

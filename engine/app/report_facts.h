@@ -1,0 +1,28 @@
+// What a reenactment report (report.h) says about how its output was made, read back from the
+// JSON: `gmg evaluate` uses it for failures, fallbacks, transitions and the plot's junctions,
+// `gmg render` for its junction markers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace gmg {
+
+struct ReportFacts {
+  nlohmann::json totals;            // the report's "totals" object (has "failures")
+  nlohmann::json parameters;        // its "parameters" object; null when absent
+  int frames = -1;                  // its "frames" (the output's frame count); -1 when absent
+  std::vector<int> source_frames;   // graph frames in output order
+  std::vector<double> junctions_s;  // output times (s) where the source jumps
+};
+
+// Reads the report at `path`; junction times are in seconds at the output's `fps`. A junction is
+// where the graph frame does not follow its predecessor (inside a subsequence or across two);
+// the path of a subsequence is resampled evenly onto its target frames, so path index i of n
+// lands at start_frame + i * (target_length - 1) / (n - 1). gmg::Error naming the file when it
+// is not a reenactment report (no totals.failures or subsequences) or a subsequence is malformed.
+ReportFacts read_report_facts(const std::string& path, double fps);
+
+}  // namespace gmg
