@@ -114,6 +114,12 @@ class Planner {
     seg.path = path;
     seg.cost = cost;
     initialisation_count_use(index_, path.front());
+    // The natural planner plays the stop node as the next subsequence's first frame, where the
+    // test's key frame is, instead of as this one's last frame, one frame early; the next piece
+    // continues from it. Besides the rhythm, this keeps playback at the capture's speed: a path
+    // that keeps its stop node advances len source frames in len - 1 output steps, plus one more
+    // into the next piece, so every piece played ~1/l_sub fast (BEAT2 jerk 1.19 -> 1.08 x truth).
+    if (natural_ && seg.path.size() >= 2) seg.path.pop_back();
   }
 
   // A fallback's searches (each one counts as a retry); on success records it in seg.

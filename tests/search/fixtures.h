@@ -41,11 +41,13 @@ inline MotionGraph chain_graph(int n, const std::vector<int>& onsets,
   return g;
 }
 
-// Plans with default search parameters (fallbacks on or off) and seed 1.
+// Plans with default search parameters (fallbacks on or off, natural or paper planner) and seed 1.
 
-inline Plan plan_one(const MotionGraph& g, const std::vector<Subsequence>& subs, bool fallbacks) {
+inline Plan plan_one(const MotionGraph& g, const std::vector<Subsequence>& subs, bool fallbacks,
+                     PlannerMode planner = PlannerMode::Natural) {
   SearchParams p;
   p.fallbacks = fallbacks;
+  p.planner = planner;
   std::mt19937_64 rng(1);
   return plan_reenactment(g, subs, p, rng);
 }
