@@ -19,7 +19,8 @@ $gmg inspect "$out/reference.gmg"
 echo "demo: reenacting"
 $gmg reenact --graph "$out/reference.gmg" --audio "$out/new_speech.wav" --transcript "$out/new_speech.tsv" \
   -o "$out/reenacted.bvh" --report "$out/report.json" --seed 7
-$gmg evaluate --generated "$out/reenacted.bvh" --audio "$out/new_speech.wav" --report "$out/report.json"
+$gmg evaluate --generated "$out/reenacted.bvh" --audio "$out/new_speech.wav" --report "$out/report.json" \
+  --reference "$out/reference.gmg"
 echo "demo: rendering the result with its speech"
 $gmg render "$out/reenacted.bvh" --audio "$out/new_speech.wav" --transcript "$out/new_speech.tsv" \
   --report "$out/report.json" -o "$out/reenacted.mp4"
