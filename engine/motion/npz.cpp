@@ -124,8 +124,10 @@ Motion npz_parse(const std::string& bytes, const std::string& name, const Skelet
   const glm::dvec3 root_offset = skeleton.joints[0].offset;
   for (int f = 0; f < m.frame_count; ++f) {
     const double* row = &poses.values[static_cast<std::size_t>(f) * poses.shape[1]];
-    for (int k = 0; k < joints; ++k)
-      m.rotations[m.index(f, map[k])] = expmap_to_quat(glm::dvec3(row[3 * k], row[3 * k + 1], row[3 * k + 2]));
+    for (int k = 0; k < joints; ++k) {
+      const double* v = row + static_cast<std::ptrdiff_t>(3) * k;
+      m.rotations[m.index(f, map[k])] = expmap_to_quat(glm::dvec3(v[0], v[1], v[2]));
+    }
     const double* t = &trans.values[static_cast<std::size_t>(f) * 3];
     m.translations[m.index(f, 0)] = glm::dvec3(t[0], t[1], t[2]) + root_offset;
   }

@@ -55,7 +55,7 @@ TEST(AudioFile, WavGoesThroughTheExactReader) {
   EXPECT_TRUE(gmg::audio::is_wav_path(wav));
   EXPECT_EQ(gmg::audio::read_audio(wav).samples, gmg::audio::read_wav(wav).samples);
   // A WAV read_wav rejects is not handed to another decoder: its error stands.
-  gmg::testing::write_text(dir.file("bad.wav"), "RIFF\x04\x00\x00\x00WAVX");
+  gmg::testing::write_text(dir.file("bad.wav"), std::string("RIFF\x04\x00\x00\x00WAVX", 12));
   EXPECT_EQ(error_of([&] { gmg::audio::read_audio(dir.file("bad.wav")); }),
             error_of([&] { gmg::audio::read_wav(dir.file("bad.wav")); }));
 }

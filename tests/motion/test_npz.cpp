@@ -60,6 +60,7 @@ std::string f8(const std::string& shape, const std::vector<double>& v) {
 // An archive of the given (name, .npy bytes) members.
 std::string archive(const std::vector<std::pair<std::string, std::string>>& members, bool deflate = false) {
   std::vector<ZipMember> m;
+  m.reserve(members.size());
   for (const auto& [name, bytes] : members) m.push_back({name, bytes, deflate});
   return zip_format(m, "test.npz");
 }
@@ -107,7 +108,7 @@ TEST(Npy, WritesWhatItReadsAndPadsTheHeaderTo64Bytes) {
   ASSERT_GE(bytes.size(), 10u);
   const std::size_t header = static_cast<unsigned char>(bytes[8]) | static_cast<unsigned char>(bytes[9]) << 8;
   EXPECT_EQ((10 + header) % 64, 0u);
-  EXPECT_EQ(bytes.size(), 10 + header + 4 * 8);
+  EXPECT_EQ(bytes.size(), 10 + header + 32);             // 4 float64 values
   EXPECT_EQ(bytes, f8("(2, 2)", {1.5, -2, 0, 1e-300}));  // byte for byte what numpy writes
   // A text scalar as numpy saves a str: dtype '<U7', shape (), UTF-32 little-endian.
   std::string utf32;
@@ -363,7 +364,7 @@ TEST(Npz, SharedBeat2NpzWithItsBvhAsTemplateGivesTheBvhsJointPositions) {
   // npz read on it sits lower by exactly that constant (data README), for every joint and frame.
   const Eigen::RowVector3d pelvis_rest(0.002777, -0.383289, 0.010682);
   Eigen::MatrixXd shifted = pn;
-  for (int j = 0; j < npz.joint_count(); ++j) shifted.middleCols(3 * j, 3).rowwise() += pelvis_rest;
+  for (Eigen::Index j = 0; j < npz.joint_count(); ++j) shifted.middleCols(3 * j, 3).rowwise() += pelvis_rest;
   // The BVH rounds angles to 1e-6 degrees and positions to 1e-6 m; poses are float32.
   EXPECT_LT(max_abs_diff(shifted, pb), 1e-5);
   EXPECT_GT(max_abs_diff(pn, pb), 0.38);

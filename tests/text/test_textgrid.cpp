@@ -162,9 +162,10 @@ std::string grid_of(const std::vector<std::pair<std::string, std::string>>& tier
   g += "size = " + std::to_string(tiers.size() + (point_tier.empty() ? 0 : 1)) + "\nitem []:\n";
   int k = 0;
   for (const auto& [name, word] : tiers) {
-    g += "    item [" + std::to_string(++k) + "]:\n        class = \"IntervalTier\"\n        name = \"" + name +
-         "\"\n        xmin = 0\n        xmax = 2\n        intervals: size = 1\n        intervals [1]:\n" +
-         "            xmin = 0.5\n            xmax = 1.25\n            text = \"" + word + "\"\n";
+    g += "    item [" + std::to_string(++k) + "]:\n        class = \"IntervalTier\"\n        name = \"";
+    g += name;
+    g += "\"\n        xmin = 0\n        xmax = 2\n        intervals: size = 1\n        intervals [1]:\n";
+    g += "            xmin = 0.5\n            xmax = 1.25\n            text = \"" + word + "\"\n";
   }
   if (!point_tier.empty())
     g += "    item [" + std::to_string(++k) + "]:\n        class = \"TextTier\"\n        name = \"" + point_tier +
