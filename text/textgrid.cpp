@@ -1,4 +1,4 @@
-// Praat TextGrid transcripts (long and short text formats): the words tier.
+// Praat TextGrid transcripts (long and short text formats): the words tier, or the tier asked for.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -261,39 +261,65 @@ class TextGridParser {
   long last_line_ = 1;
 };
 
+// "phones" (IntervalTier), "notes" (TextTier): for the message when no tier can be chosen.
+std::string tier_list(const std::vector<Tier>& tiers) {
+  std::string list;
+  for (const Tier& t : tiers) list += (list.empty() ? "" : ", ") + quote_field(t.name) + " (" + t.cls + ")";
+  return list.empty() ? std::string("none") : list;
+}
+
+// The tier named `wanted`: the exact name, else the one name equal to it ignoring ASCII case and
+// surrounding spaces.
+const Tier* named_tier(const std::vector<Tier>& tiers, const std::string& wanted, const std::string& path) {
+  for (const Tier& t : tiers)
+    if (t.name == wanted) return &t;
+  const Tier* found = nullptr;
+  int n = 0;
+  for (const Tier& t : tiers)
+    if (ascii_lower(trim(t.name)) == ascii_lower(trim(wanted))) {
+      found = &t;
+      ++n;
+    }
+  if (n != 1) throw Error(path + ": no tier named " + quote_field(wanted) + " (tiers found: " + tier_list(tiers) + ")");
+  return found;
+}
+
+// Without --tier: "words", else the one tier ending in "words", else the only interval tier.
+const Tier* default_tier(const std::vector<Tier>& tiers, const std::string& path) {
+  for (const Tier& t : tiers)
+    if (ascii_lower(trim(t.name)) == "words") return &t;
+  const Tier* candidate = nullptr;
+  int n = 0;
+  for (const Tier& t : tiers) {  // e.g. Montreal Forced Aligner's "speaker - words"
+    std::string name = ascii_lower(trim(t.name));
+    if (name.size() > 5 && name.compare(name.size() - 5, 5, "words") == 0) {
+      candidate = &t;
+      ++n;
+    }
+  }
+  if (n == 1) return candidate;
+  const Tier* only = nullptr;
+  int intervals = 0;
+  for (const Tier& t : tiers)
+    if (t.cls == "IntervalTier") {
+      only = &t;
+      ++intervals;
+    }
+  if (intervals == 1) return only;
+  throw Error(path + ": no tier named \"words\" and " + (intervals ? "more than one" : "no") +
+              " interval tier to read instead (tiers found: " + tier_list(tiers) + "); choose one with --tier NAME");
+}
+
 }  // namespace
 
-std::vector<Word> read_textgrid(const std::string& path) {
+std::vector<Word> read_textgrid(const std::string& path, const std::string& tier) {
   const std::string text = detail::read_text_file(path);
   std::vector<Tier> tiers = TextGridParser(text, path).parse();
-
-  const Tier* chosen = nullptr;
-  for (const Tier& t : tiers)
-    if (ascii_lower(trim(t.name)) == "words") {
-      chosen = &t;
-      break;
-    }
-  if (!chosen) {  // e.g. Montreal Forced Aligner's "speaker - words"
-    const Tier* candidate = nullptr;
-    int n = 0;
-    for (const Tier& t : tiers) {
-      std::string name = ascii_lower(trim(t.name));
-      if (name.size() > 5 && name.compare(name.size() - 5, 5, "words") == 0) {
-        candidate = &t;
-        ++n;
-      }
-    }
-    if (n == 1) chosen = candidate;
-  }
-  if (!chosen) {
-    std::string list;
-    for (const Tier& t : tiers) list += (list.empty() ? "" : ", ") + quote_field(t.name);
-    throw Error(path + ": no tier named \"words\" (tiers found: " + (list.empty() ? std::string("none") : list) + ")");
-  }
+  const Tier* chosen = tier.empty() ? default_tier(tiers, path) : named_tier(tiers, tier, path);
   if (chosen->cls != "IntervalTier")
-    throw Error(error_at_line(
-        path, chosen->line,
-        "the words tier " + quote_field(chosen->name) + " is a " + chosen->cls + ", not an IntervalTier"));
+    throw Error(
+        error_at_line(path, chosen->line,
+                      "the tier " + quote_field(chosen->name) + " is a " + chosen->cls + ", not an IntervalTier"));
 
   std::vector<Word> words;
   for (const Interval& iv : chosen->intervals) {

@@ -1,5 +1,5 @@
 // The transcript front door: format names, dispatch by extension, the fit to the audio, and the
-// helpers the three readers share. The readers: tsv.cpp, textgrid.cpp, google_json.cpp.
+// helpers the readers share. The readers: tsv.cpp, textgrid.cpp, google_json.cpp, whisper_json.cpp.
 #include "text/transcript.h"
 
 #include <algorithm>
@@ -65,7 +65,7 @@ std::string transcript_format_name(TranscriptFormat format) {
   return "auto";
 }
 
-std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format) {
+std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format, const std::string& tier) {
   if (format == TranscriptFormat::Auto) {
     std::string ext = ascii_lower(std::filesystem::path(path).extension().string());
     if (ext == ".tsv" || ext == ".txt") {
@@ -80,13 +80,15 @@ std::vector<Word> read_transcript(const std::string& path, TranscriptFormat form
                   " (known: .tsv, .txt, .TextGrid, .json); use --transcript-format tsv|textgrid|json");
     }
   }
+  if (!tier.empty() && format != TranscriptFormat::TextGrid)
+    throw Error(path + ": a tier (" + quote_field(tier) + ") was given, but only a TextGrid transcript has tiers");
   switch (format) {
     case TranscriptFormat::Tsv:
       return read_tsv(path);
     case TranscriptFormat::TextGrid:
-      return read_textgrid(path);
+      return read_textgrid(path, tier);
     case TranscriptFormat::Json:
-      return read_google_json(path);
+      return read_json_transcript(path);
     case TranscriptFormat::Auto:
       break;
   }

@@ -1,8 +1,9 @@
-// Word-level transcripts: the three formats seen in co-speech gesture datasets.
+// Word-level transcripts: the formats seen in co-speech gesture datasets and speech recognisers.
 //
 //   GENEA 2022/2023 TSV      start<TAB>end<TAB>word         (read_tsv)
 //   BEAT/BEAT2 Praat TextGrid, tier "words"                 (read_textgrid)
 //   GENEA 2020 Google speech JSON, alternatives[0].words[]   (read_google_json)
+//   Whisper / WhisperX JSON, segments[].words[] or word_segments[]  (read_whisper_json)
 //
 // Contract shared by every reader:
 // - the result is sorted by start time (stable: words with equal starts keep file order);
@@ -36,9 +37,12 @@ TranscriptFormat parse_transcript_format(const std::string& name);
 std::string transcript_format_name(TranscriptFormat format);
 
 // Reads a transcript. Auto picks the reader by extension (ASCII case-insensitive):
-// .tsv/.txt -> TSV, .textgrid -> TextGrid, .json -> JSON; any other extension is a gmg::Error
-// that suggests --transcript-format.
-std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format = TranscriptFormat::Auto);
+// .tsv/.txt -> TSV, .textgrid -> TextGrid, .json -> JSON (read_json_transcript: Whisper, WhisperX
+// or Google); any other extension is a gmg::Error that suggests --transcript-format. `tier` names
+// the TextGrid tier to read ("" = read_textgrid's default); given with another format it is an
+// error, since it would silently mean nothing.
+std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format = TranscriptFormat::Auto,
+                                  const std::string& tier = "");
 
 // GENEA TSV: one word a line, `start<TAB>end<TAB>word`, no header. Everything after the second
 // tab is the word (it may contain spaces and tabs; it is trimmed). A line without any tab is
@@ -49,14 +53,16 @@ std::vector<Word> read_transcript(const std::string& path, TranscriptFormat form
 std::vector<Word> read_tsv(const std::string& path);
 
 // Praat TextGrid, long or short text format (UTF-8 or UTF-16). Reads the IntervalTier named
-// "words" (ASCII case-insensitive; when there is none, the one tier whose name ends in "words",
-// e.g. MFA's "speaker - words"). Intervals whose text is empty or only whitespace are silence
-// and dropped; Praat's doubled quotes ("") inside a text become one quote.
+// `tier` when given (exact name, else the one name equal ignoring ASCII case and surrounding
+// spaces). Without one: the tier named "words" (ASCII case-insensitive); when there is none, the
+// one tier whose name ends in "words" (e.g. MFA's "speaker - words"); else the only
+// IntervalTier of the file. Intervals whose text is empty or only whitespace are silence and
+// dropped; Praat's doubled quotes ("") inside a text become one quote.
 // Errors (with file and line): not a text TextGrid (no `File type = "ooTextFile"` /
-// `Object class = "TextGrid"`), no words tier (the message lists the tiers found), a words tier
-// that is not an IntervalTier, a malformed or truncated structure, a non-numeric / NaN time,
-// an interval that ends before it starts.
-std::vector<Word> read_textgrid(const std::string& path);
+// `Object class = "TextGrid"`), no such tier or no tier to choose (the message lists the tiers
+// found with their classes), a chosen tier that is not an IntervalTier, a malformed or truncated
+// structure, a non-numeric / NaN time, an interval that ends before it starts.
+std::vector<Word> read_textgrid(const std::string& path, const std::string& tier = "");
 
 // Google speech-to-text JSON (GENEA 2020 / Trinity): a top-level array of results, or an object
 // with a "results" array; each result's alternatives[0].words[] holds
@@ -69,6 +75,24 @@ std::vector<Word> read_textgrid(const std::string& path);
 // invalid JSON (...)", engine/core/json.h), wrong structure or a missing field (the message gives
 // the JSON location, e.g. "[2].alternatives[0].words[5]"), a bad time.
 std::vector<Word> read_google_json(const std::string& path);
+
+// Whisper JSON (openai-whisper run with word timestamps: segments[].words[] with "word",
+// "start", "end") and WhisperX JSON (the same, and word_segments[]; segments[].words[] is read
+// when present, else word_segments[]). Words are trimmed (Whisper starts them with a space);
+// empty ones are dropped. WhisperX leaves out "start" and "end" for words its aligner cannot
+// place (numbers written as digits): such a word takes the gap between its timed neighbours in
+// its segment (start = the previous word's end or the segment's start, end = the next word's
+// start or the segment's end), so the transcript keeps every word; a word with no time around it
+// at all is dropped. A file with no segments is a silent clip (zero words).
+// Errors (with the JSON location, e.g. "segments[3].words[2]"): invalid JSON, segments without
+// any "words" (Whisper run without word timestamps: the message says how to get them), a word
+// without "word", a time that is not a number, negative, or only one of start/end, end before
+// start.
+std::vector<Word> read_whisper_json(const std::string& path);
+
+// A .json transcript of any kind: Whisper/WhisperX when the top level is an object with
+// "segments" or "word_segments", else Google speech JSON.
+std::vector<Word> read_json_transcript(const std::string& path);
 
 // Throws gmg::Error naming `path` when some word ends after duration_s + tolerance_s, i.e. the
 // transcript runs past the end of the audio (usually a transcript of another recording).

@@ -10,12 +10,31 @@
 
 namespace gmg {
 
+namespace {
+
+// "gmg reenact" for the subcommand the parse reached, so the hint names the right --help.
+std::string command_path(const CLI::App& app) {
+  std::string path = "gmg";
+  for (const CLI::App* a = &app; a && !a->get_subcommands().empty();) {
+    a = a->get_subcommands().front();
+    path += " " + a->get_name();
+  }
+  return path;
+}
+
+}  // namespace
+
 int cli_main(int argc, char** argv) {
   CLI::App app{
       "gmg: gesture motion graphs - reenact a speaker's gestures for new speech.\n"
-      "Build a graph from reference clips (BVH + WAV + optional transcript), then reenact new speech."};
+      "Build a graph from reference clips (motion + speech + optional transcript), then reenact new speech."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "gmg 0.1.0");
+  // Subcommands copy these option defaults when they are added, so every --help shows defaults.
+  app.option_defaults()->always_capture_default();
+  app.footer(
+      "Exit codes: 0 success, 1 an input or processing error, 2 a usage error (batch: 1 some clip failed, 2 a "
+      "setup error, 130 interrupted).");
   int exit_code = 0;  // set by subcommands with their own codes (batch)
   add_build_command(app);
   add_inspect_command(app);
@@ -26,11 +45,20 @@ int cli_main(int argc, char** argv) {
   add_synth_command(app);
   add_config_command(app);
   add_render_command(app);
+  // A repeatable option's empty default would print as "=[]": nothing worth showing.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* o : sub->get_options())
+      if (o->get_default_str() == "[]") o->default_str("");
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed on stdout
+    std::cerr << "gmg: error: " << e.what() << " (see '" << command_path(app) << " --help')\n";
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "gmg: error: " << e.what() << "\n";
+    return 2;
   } catch (const Error& e) {
     std::cerr << "gmg: error: " << e.what() << "\n";
     return 1;

@@ -9,7 +9,9 @@ namespace gmg {
 void ConfigOptions::add(CLI::App* cmd, bool with_seed) {
   cmd->add_option("--config", file, "JSON file of parameters (see 'gmg config')");
   cmd->add_option("--set", sets, "parameter override key=value (repeatable)");
-  if (with_seed) cmd->add_option("--seed", seed, "seed of every random choice");
+  if (with_seed)
+    cmd->add_option("--seed", seed,
+                    "seed of every random choice (default: the config's seed, " + std::to_string(Config{}.seed) + ")");
 }
 
 Config ConfigOptions::make() const {

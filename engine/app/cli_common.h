@@ -2,7 +2,12 @@
 // registers each subcommand (engine/app/cli_<name>.cpp). Each add_<name>_command adds the
 // subcommand with its options to app and sets its callback; the options' storage lives as long
 // as the callback (and so as app). A callback reports a problem by throwing gmg::Error; cli_main
-// prints it and exits with 1.
+// prints it and exits with 1, or with 2 for a UsageError.
+//
+// Conventions of every subcommand: exit 0 on success, 1 on an input or processing error, 2 on a
+// usage error (CLI11's parse errors and UsageError), each error one line "gmg: error: ...";
+// `--help` shows every option's default; JSON output has snake_case keys and numbers in their
+// shortest round-trip form.
 #pragma once
 
 #include <cstdint>
@@ -13,12 +18,20 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/app/config.h"
+#include "engine/core/error.h"
 
 namespace CLI {
 class App;
 }
 
 namespace gmg {
+
+// A command line that cannot mean anything (options that contradict or need each other): exits
+// 2 like CLI11's own parse errors, not 1 like an input that fails.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
 
 // --config FILE and --set key=value (and optionally --seed), shared by the subcommands that take
 // parameters.

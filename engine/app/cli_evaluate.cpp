@@ -32,9 +32,10 @@ void add_evaluate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("evaluate", "objective metrics of a generated motion");
   auto a = std::make_shared<EvaluateArgs>();
   EvaluateInputs& in = a->inputs;
-  cmd->add_option("--generated", in.generated, "generated BVH")->required();
-  cmd->add_option("--truth", in.truth, "ground-truth BVH (same skeleton and length)");
-  cmd->add_option("--audio", in.audio, "the speech WAV (beat consistency and speech correlation, with a control)");
+  cmd->add_option("--generated", in.generated, "generated motion, BVH or SMPL-X .npz")->required();
+  cmd->add_option("--truth", in.truth, "ground-truth motion, BVH or .npz (same skeleton and length)");
+  cmd->add_option("--skeleton", in.skeleton, "BVH whose hierarchy gives .npz motions their skeleton");
+  cmd->add_option("--audio", in.audio, "the speech (beat consistency and speech correlation, with a control)");
   cmd->add_option("--report", in.report, "the reenactment report (failures, fallbacks, transitions, junctions)");
   cmd->add_option("--reference", in.reference,
                   "the reference capture, BVH or graph (.gmg): jump threshold, and ratios when there is no truth");

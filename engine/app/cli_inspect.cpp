@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -22,44 +23,53 @@ struct InspectArgs {
 std::pair<int, int> parse_range(const std::string& text, int frames) {
   if (text.empty()) return {0, frames};
   const std::size_t colon = text.find(':');
-  if (colon == std::string::npos) throw Error("--frames expects FROM:TO, got '" + text + "'");
+  if (colon == std::string::npos) throw UsageError("--frames expects FROM:TO, got '" + text + "'");
   try {
     const int from = colon == 0 ? 0 : std::stoi(text.substr(0, colon));
     const int to = colon + 1 == text.size() ? frames : std::stoi(text.substr(colon + 1));
     return {from, to};
   } catch (const std::exception&) {
-    throw Error("--frames expects FROM:TO with whole numbers, got '" + text + "'");
+    throw UsageError("--frames expects FROM:TO with whole numbers, got '" + text + "'");
   }
 }
 
-nlohmann::ordered_json stats_json(const MotionGraph& g) {
+// One count: its snake_case JSON key and its text label (SPEC "Command line": `onset nodes: 115`).
+struct Count {
+  const char* key;
+  const char* label;
+  nlohmann::ordered_json value;
+};
+
+std::vector<Count> counts(const MotionGraph& g) {
   const GraphStats s = graph_stats(g);
-  return {{"frames", s.frames},
-          {"clips", s.clips},
-          {"fps", g.motion.fps},
-          {"joints", g.motion.joint_count()},
-          {"onset nodes", s.onset_nodes},
-          {"keyword nodes", s.keyword_nodes},
-          {"break nodes", s.break_nodes},
-          {"key nodes", s.key_nodes},
-          {"natural edges", s.natural_edges},
-          {"unnatural edges", s.unnatural_edges},
-          {"mean out-degree", s.mean_out_degree},
-          {"frames with a transition", s.share_with_transition},
-          {"shortest subsequence", s.shortest_subsequence},
-          {"longest subsequence", s.longest_subsequence}};
+  return {{"frames", "frames", s.frames},
+          {"clips", "clips", s.clips},
+          {"fps", "fps", g.motion.fps},
+          {"joints", "joints", g.motion.joint_count()},
+          {"onset_nodes", "onset nodes", s.onset_nodes},
+          {"keyword_nodes", "keyword nodes", s.keyword_nodes},
+          {"break_nodes", "break nodes", s.break_nodes},
+          {"key_nodes", "key nodes", s.key_nodes},
+          {"natural_edges", "natural edges", s.natural_edges},
+          {"unnatural_edges", "unnatural edges", s.unnatural_edges},
+          {"mean_out_degree", "mean out-degree", s.mean_out_degree},
+          {"share_with_transition", "frames with a transition", s.share_with_transition},
+          {"shortest_subsequence", "shortest subsequence", s.shortest_subsequence},
+          {"longest_subsequence", "longest subsequence", s.longest_subsequence}};
 }
 
 void run_inspect(const InspectArgs& a) {
   const MotionGraph g = graph_load(a.graph);
-  const nlohmann::ordered_json j = stats_json(g);
+  const std::vector<Count> c = counts(g);
   if (a.json) {
+    nlohmann::ordered_json j;
+    for (const Count& k : c) j[k.key] = k.value;
     std::cout << j.dump() << "\n";
   } else {
-    for (auto it = j.begin(); it != j.end(); ++it) std::cout << it.key() << ": " << it.value().dump() << "\n";
-    for (const ClipInfo& c : g.clips)
-      std::cout << "clip: " << c.name << " (frames " << c.first_frame << ".." << c.first_frame + c.frame_count - 1
-                << ")\n";
+    for (const Count& k : c) std::cout << k.label << ": " << k.value.dump() << "\n";
+    for (const ClipInfo& clip : g.clips)
+      std::cout << "clip: " << clip.name << " (frames " << clip.first_frame << ".."
+                << clip.first_frame + clip.frame_count - 1 << ")\n";
   }
   const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);

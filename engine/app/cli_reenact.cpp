@@ -7,7 +7,7 @@
 #include "engine/app/cli_common.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/error.h"
-#include "engine/motion/bvh.h"
+#include "engine/motion/motion_file.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
 
@@ -16,27 +16,30 @@ namespace {
 
 struct ReenactArgs {
   std::string graph, audio, transcript, output, report, format = "auto";
-  std::string ref_motion, ref_audio, ref_transcript;
+  std::string ref_motion, ref_audio, ref_transcript, skeleton, tier;
   ConfigOptions config;
 };
 
 void run_reenact(const ReenactArgs& a) {
   if (a.graph.empty() == a.ref_motion.empty())
-    throw Error("reenact: give either --graph or --reference-motion with --reference-audio");
+    throw UsageError("reenact: give either --graph or --reference-motion with --reference-audio");
   const Config cfg = a.config.make();
   MotionGraph g;
   std::string graph_name = a.graph;
   if (!a.graph.empty()) {
     g = graph_load(a.graph);
   } else {
-    if (a.ref_audio.empty()) throw Error("reenact: --reference-motion needs --reference-audio");
+    if (a.ref_audio.empty()) throw UsageError("reenact: --reference-motion needs --reference-audio");
     g = graph_build_from_files(
-        {{a.ref_motion, {a.ref_audio, transcript_or_none(a.ref_transcript), text::TranscriptFormat::Auto}}}, cfg);
+        {{a.ref_motion,
+          {a.ref_audio, transcript_or_none(a.ref_transcript), text::TranscriptFormat::Auto, a.tier},
+          a.skeleton}},
+        cfg);
     graph_name = a.ref_motion;
   }
-  const Reenactment r =
-      reenact(g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format)}, cfg, graph_name);
-  bvh_write(a.output, r.motion);
+  const Reenactment r = reenact(
+      g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier}, cfg, graph_name);
+  motion_write(a.output, r.motion);
   if (!a.report.empty()) write_json_file(a.report, r.report);
   const auto& t = r.report["totals"];
   std::cout << "wrote " << a.output << ": " << r.motion.frame_count << " frames, " << t["subsequences"]
@@ -50,13 +53,17 @@ void add_reenact_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("reenact", "generate gestures for new speech");
   auto a = std::make_shared<ReenactArgs>();
   cmd->add_option("--graph", a->graph, "graph file from 'gmg build'");
-  cmd->add_option("--reference-motion", a->ref_motion, "instead of --graph: reference BVH (graph built in memory)");
-  cmd->add_option("--reference-audio", a->ref_audio, "the reference's WAV");
+  cmd->add_option("--reference-motion", a->ref_motion,
+                  "instead of --graph: reference BVH or SMPL-X .npz (graph built in memory)");
+  cmd->add_option("--reference-audio", a->ref_audio, "the reference's speech (WAV, FLAC, MP3, ...)");
   cmd->add_option("--reference-transcript", a->ref_transcript, "the reference's transcript (optional)");
-  cmd->add_option("--audio", a->audio, "the new speech (WAV)")->required();
+  cmd->add_option("--audio", a->audio, "the new speech (WAV, FLAC, MP3, OGG, M4A, ...)")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (.tsv, .TextGrid, .json; optional)");
-  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json");
-  cmd->add_option("-o,--output", a->output, "BVH to write")->required();
+  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
+  cmd->add_option("--tier", a->tier, "TextGrid tier of the words (default: 'words', else the only interval tier)");
+  cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --reference-motion its skeleton");
+  cmd->add_option("-o,--output", a->output, "motion to write: .bvh, or .npz (SMPL-X, for BEAT2/EMAGE tools)")
+      ->required();
   cmd->add_option("--report", a->report, "JSON report to write");
   a->config.add(cmd, true);
   cmd->callback([a] { run_reenact(*a); });

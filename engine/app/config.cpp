@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -38,14 +37,9 @@ bool parse_bool(const std::string& key, const std::string& v) {
   throw Error("config key '" + key + "': '" + v + "' is not true or false");
 }
 
-// 17 significant digits (not format_number's shortest round-trip text) because `gmg config
-// --keys` prints this and must stay byte-identical until the switch is made deliberately.
-std::string format_double(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
+// The shortest text that reads back as exactly v, so `gmg config --keys` shows 0.2, not
+// 0.20000000000000001, and config_to_json (which parses it back) keeps every bit.
+std::string format_double(double v) { return format_number(v); }
 
 struct Accessor {
   ConfigKey key;

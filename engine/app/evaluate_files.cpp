@@ -1,26 +1,26 @@
 #include "engine/app/evaluate_files.h"
 
-#include "audio/wav.h"
+#include "audio/audio_file.h"
 #include "engine/app/plot.h"
 #include "engine/app/report_facts.h"
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
-#include "engine/motion/bvh.h"
+#include "engine/motion/motion_file.h"
 #include "graph/graph_io.h"
 
 namespace gmg {
 namespace {
 
-std::vector<Motion> read_reference(const std::string& path) {
+std::vector<Motion> read_reference(const std::string& path, const std::string& skeleton) {
   std::vector<Motion> clips;
   if (ends_with_ci(path, ".gmg")) {
     const MotionGraph g = graph_load(path);
     for (const ClipInfo& c : g.clips)
       clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
   } else {
-    clips.push_back(bvh_read(path));
+    clips.push_back(motion_read(path, skeleton));
   }
   return clips;
 }
@@ -29,10 +29,10 @@ std::vector<Motion> read_reference(const std::string& path) {
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
   EvaluateResult result;
-  Motion generated = bvh_read(in.generated);
+  Motion generated = motion_read(in.generated, in.skeleton);
   Motion truth;
   if (!in.truth.empty()) {
-    truth = bvh_read(in.truth);
+    truth = motion_read(in.truth, in.skeleton);
     if (in.trim && truth.frame_count != generated.frame_count) {
       Motion& longer = truth.frame_count > generated.frame_count ? truth : generated;
       const int keep = std::min(truth.frame_count, generated.frame_count);
@@ -43,8 +43,9 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
     }
   }
   audio::Audio sound;
-  if (!in.audio.empty()) sound = audio::read_wav(in.audio);
-  const std::vector<Motion> reference = in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference);
+  if (!in.audio.empty()) sound = audio::read_audio(in.audio);
+  const std::vector<Motion> reference =
+      in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference, in.skeleton);
   ReportFacts facts;
   if (!in.report.empty()) facts = read_report_facts(in.report, generated.fps);
 

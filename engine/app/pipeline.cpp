@@ -6,15 +6,15 @@
 #include <cmath>
 #include <random>
 
+#include "audio/audio_file.h"
 #include "audio/onset.h"
-#include "audio/wav.h"
 #include "engine/assemble/blend.h"
 #include "engine/assemble/resample.h"
 #include "engine/assemble/transitions.h"
 #include "engine/core/error.h"
 #include "engine/metrics/evaluate.h"
-#include "engine/motion/bvh.h"
 #include "engine/motion/cleanup.h"
+#include "engine/motion/motion_file.h"
 #include "search/segmentation.h"
 
 namespace gmg {
@@ -47,9 +47,9 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
 
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
                             const text::Lexicon& lexicon) {
-  const audio::Audio sound = audio::read_wav(files.audio);
+  const audio::Audio sound = audio::read_audio(files.audio);
   if (files.transcript.empty()) return speech_events(sound, nullptr, files.audio, fps, frame_count, params, lexicon);
-  const std::vector<text::Word> words = text::read_transcript(files.transcript, files.transcript_format);
+  const std::vector<text::Word> words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
   return speech_events(sound, &words, files.transcript, fps, frame_count, params, lexicon);
 }
 
@@ -60,7 +60,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   for (const ReferenceFiles& c : clips) {
     ClipEvents in;
     in.name = c.motion;
-    in.motion = bvh_read(c.motion);
+    in.motion = motion_read(c.motion, c.skeleton);
     motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                            config.cleanup.smooth_order, c.motion);
     const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);

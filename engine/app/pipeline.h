@@ -21,9 +21,10 @@ namespace gmg {
 
 // One speech: an audio file and, optionally, a word-timed transcript.
 struct SpeechFiles {
-  std::string audio;       // WAV path (required)
+  std::string audio;       // audio path (required): WAV, or any format audio/audio_file.h reads
   std::string transcript;  // "" = none
   text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
+  std::string tier{};  // the TextGrid tier to read; "" = the default (text/transcript.h read_textgrid)
 };
 
 // Speech as frames on a motion grid.
@@ -51,8 +52,9 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
 text::Lexicon lexicon_for(const GraphParams& params);
 
 struct ReferenceFiles {
-  std::string motion;  // BVH path
+  std::string motion;  // BVH or SMPL-X .npz path
   SpeechFiles speech;
+  std::string skeleton{};  // BVH skeleton template of an .npz motion (engine/motion/npz.h); "" = none
 };
 
 // Reads, analyses and joins the clips into one graph.

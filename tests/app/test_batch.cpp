@@ -465,6 +465,67 @@ TEST_F(BatchData, TerminalProgressIsOneUpdatingLine) {
   EXPECT_TRUE(contains(s, "FAILED")) << s;
 }
 
+// Files that used to vanish without a word: a broken symbolic link and a transcript without audio
+// are failed clips with their reason in summary.csv and summary.json; a broken link in the pool is
+// a note there; a FLAC test clip (made with ffmpeg, when it is installed) is read like a WAV.
+TEST_F(BatchData, BrokenLinksAndIncompleteClipsAreReportedNotSkipped) {
+  TempDir work, out;
+  const fs::path p = work.path() / "pool", t = work.path() / "tests";
+  fs::create_directories(p);
+  fs::create_directories(t);
+  for (const char* ext : {"bvh", "wav", "tsv"})
+    fs::copy_file(root() / "pool" / ext / (std::string("ref_a.") + ext), p / (std::string("ref_a.") + ext));
+  fs::create_symlink(work.path() / "gone.bvh", p / "ref_link.bvh");
+  fs::copy_file(p / "ref_a.wav", p / "ref_link.wav");
+  for (const char* ext : {"wav", "tsv"})
+    fs::copy_file(root() / "tests_flat" / (std::string("tst_01.") + ext), t / (std::string("tst_01.") + ext));
+  fs::create_symlink(work.path() / "moved.wav", t / "tst_link.wav");
+  fs::copy_file(t / "tst_01.tsv", t / "tst_only.tsv");                    // its WAV is missing
+  fs::copy_file(root() / "tests_flat" / "tst_02.bvh", t / "tst_gt.bvh");  // ground truth alone: not a clip
+  const bool flac = std::system("ffmpeg -version > /dev/null 2>&1") == 0;
+  std::string pairs = "tst_01,ref_a\n";
+  if (flac) {
+    const std::string cmd = "ffmpeg -hide_banner -loglevel error -y -i '" + (t / "tst_01.wav").string() + "' '" +
+                            (t / "tst_flac.flac").string() + "'";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    pairs += "tst_flac,ref_a\n";
+  }
+  write_text(work.file("pairs.csv"), pairs);
+  BatchOptions o = options(out.path().string());
+  o.pool_dirs = {p.string()};
+  o.test_dirs = {t.string()};
+  o.pairs_manifest = work.file("pairs.csv");
+  std::ostringstream log;
+  const BatchSummary s = batch_run(o, Config{}, log);
+  const auto m = by_stem(s);
+  ASSERT_EQ(m.size(), flac ? 4u : 3u) << log.str();
+  EXPECT_EQ(m.count("tst_gt"), 0u);
+  EXPECT_EQ(m.at("tst_01")->status, BatchClipStatus::Ok) << m.at("tst_01")->error;
+  if (flac) {
+    EXPECT_EQ(m.at("tst_flac")->status, BatchClipStatus::Ok) << m.at("tst_flac")->error;
+    EXPECT_EQ(slurp(out.path() / "tst_flac.bvh"), slurp(out.path() / "tst_01.bvh"));  // the same samples
+  }
+  const std::string link_error =
+      (t / "tst_link.wav").string() + " is a broken symbolic link (to " + (work.path() / "moved.wav").string() + ")";
+  EXPECT_EQ(m.at("tst_link")->status, BatchClipStatus::Failed);
+  EXPECT_EQ(m.at("tst_link")->error, link_error);
+  EXPECT_EQ(m.at("tst_only")->status, BatchClipStatus::Failed);
+  EXPECT_EQ(m.at("tst_only")->error,
+            "the transcript " + (t / "tst_only.tsv").string() + " has no audio (WAV) beside it");
+  const std::string pool_note = "pool: " + (p / "ref_link.bvh").string() + " is a broken symbolic link (to " +
+                                (work.path() / "gone.bvh").string() + ")";
+  EXPECT_TRUE(contains(log.str(), "batch: note: " + pool_note)) << log.str();
+
+  const auto summary = nlohmann::json::parse(slurp(out.path() / "summary.json"));
+  EXPECT_EQ(summary["notes"], nlohmann::json::array({pool_note}));
+  EXPECT_EQ(summary["counts"]["failed"], 2);
+  bool listed = false;
+  for (const auto& c : summary["clips"])
+    if (c["test"] == "tst_link") listed = c["status"] == "failed" && c["error"] == link_error;
+  EXPECT_TRUE(listed) << summary.dump(2);
+  EXPECT_TRUE(contains(slurp(out.path() / "summary.csv"), "tst_only,,failed,")) << slurp(out.path() / "summary.csv");
+}
+
 // Real data: pool = BEAT2 2_scott_0_1_1 (55 joints, metres) and the ZEGGS clip (75 joints, cm);
 // tests = 2_scott_0_2_2 and 2_scott_0_3_3 with their TextGrids.
 TEST(BatchRealData, BeatAndZeggsPool) {

@@ -49,11 +49,15 @@ TEST(ConfigSet, SetsEachKindOfKeyAndReadsItBack) {
   EXPECT_EQ(c.seed, 42u);
 }
 
-TEST(ConfigSet, NumbersPrintWithSeventeenDigits) {
-  // `gmg config --keys` prints 17 significant digits: 0.1 is the double 0.1000000000000000055...
+TEST(ConfigSet, NumbersPrintAsTheShortestTextThatReadsBack) {
+  // `gmg config --keys` prints 0.1, not its 17 digits 0.10000000000000001; a value that needs them
+  // (0.1 + 0.2) keeps them, so the text always reads back as the same double.
   Config c;
   config_set(c, "lambda_occ", "0.1");
-  EXPECT_EQ(config_get(c, "lambda_occ"), "0.10000000000000001");
+  EXPECT_EQ(config_get(c, "lambda_occ"), "0.1");
+  config_set(c, "lambda_occ", "0.30000000000000004");
+  EXPECT_EQ(config_get(c, "lambda_occ"), "0.30000000000000004");
+  EXPECT_EQ(c.search.lambda_occ, 0.1 + 0.2);
 }
 
 TEST(ConfigSet, ListsAreCommaSeparatedTrimmedAndSkipEmptyItems) {

@@ -335,7 +335,7 @@ TEST_F(RenderVideo, BadOutputNamesAndSizesAreRefused) {
   RenderInputs in = inputs("out.mp4");
   EXPECT_THROW(render::scene_load(in, o), Error);
   const CliRun r = run_cli({"render", dir.file("clip.bvh"), "--size", "big", "-o", dir.file("out.mp4")});
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);  // a usage error
   EXPECT_TRUE(contains(r.err, "--size")) << r.err;
   EXPECT_FALSE(fs::exists(dir.file("out.mp4")));
 }

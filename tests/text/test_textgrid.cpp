@@ -153,4 +153,78 @@ TEST(TextGrid, ZeroWordsIsAllowed) {
   EXPECT_TRUE(tx::read_textgrid(dir.file("e.TextGrid")).empty());
 }
 
+// ---- Choosing the tier ---------------------------------------------------------------------------
+
+// A long-format TextGrid of interval tiers (name -> one interval each, "" = none) and, when
+// `point_tier` is given, a TextTier of that name with one point.
+std::string grid_of(const std::vector<std::pair<std::string, std::string>>& tiers, const std::string& point_tier = "") {
+  std::string g = "File type = \"ooTextFile\"\nObject class = \"TextGrid\"\n\nxmin = 0\nxmax = 2\ntiers? <exists>\n";
+  g += "size = " + std::to_string(tiers.size() + (point_tier.empty() ? 0 : 1)) + "\nitem []:\n";
+  int k = 0;
+  for (const auto& [name, word] : tiers) {
+    g += "    item [" + std::to_string(++k) + "]:\n        class = \"IntervalTier\"\n        name = \"";
+    g += name;
+    g += "\"\n        xmin = 0\n        xmax = 2\n        intervals: size = 1\n        intervals [1]:\n";
+    g += "            xmin = 0.5\n            xmax = 1.25\n            text = \"" + word + "\"\n";
+  }
+  if (!point_tier.empty())
+    g += "    item [" + std::to_string(++k) + "]:\n        class = \"TextTier\"\n        name = \"" + point_tier +
+         "\"\n        xmin = 0\n        xmax = 2\n        points: size = 1\n        points [1]:\n" +
+         "            number = 1\n            mark = \"beat\"\n";
+  return g;
+}
+
+TEST(TextGridTier, ANamedTierIsReadExactlyOrIgnoringCaseAndSpaces) {
+  TempDir dir;
+  write_text(dir.file("a.TextGrid"), kLongTextGrid);
+  for (const std::string name : {"phones", " PHONES "}) {
+    const auto words = tx::read_textgrid(dir.file("a.TextGrid"), name);
+    ASSERT_EQ(words.size(), 1u) << name;  // the phones tier: "" (silence) and "AH0" from 1 to 3.5 s
+    EXPECT_EQ(words[0].text, "AH0");
+    EXPECT_EQ(words[0].start, 1.0);
+    EXPECT_EQ(words[0].end, 3.5);
+  }
+  // Through the front door, by extension.
+  EXPECT_EQ(tx::read_transcript(dir.file("a.TextGrid"), tx::TranscriptFormat::Auto, "phones").at(0).text, "AH0");
+}
+
+TEST(TextGridTier, AMissingTierListsTheTiersWithTheirClasses) {
+  TempDir dir;
+  write_text(dir.file("a.TextGrid"), grid_of({{"words", "hi"}, {"phones", "HH"}}, "beats"));
+  const std::string msg = error_of([&] { tx::read_textgrid(dir.file("a.TextGrid"), "syllables"); });
+  EXPECT_CONTAINS(msg, dir.file("a.TextGrid") + ": no tier named \"syllables\"");
+  EXPECT_CONTAINS(msg, "\"words\" (IntervalTier), \"phones\" (IntervalTier), \"beats\" (TextTier)");
+  const std::string point = error_of([&] { tx::read_textgrid(dir.file("a.TextGrid"), "beats"); });
+  EXPECT_CONTAINS(point, "the tier \"beats\" is a TextTier, not an IntervalTier");
+}
+
+TEST(TextGridTier, WithoutATierNamedWordsTheOnlyIntervalTierIsRead) {
+  TempDir dir;
+  // One interval tier (and a point tier, which holds no words): it is the transcript.
+  write_text(dir.file("one.TextGrid"), grid_of({{"ortho", "hello"}}, "beats"));
+  const auto words = tx::read_textgrid(dir.file("one.TextGrid"));
+  ASSERT_EQ(words.size(), 1u);
+  EXPECT_EQ(words[0].text, "hello");
+  EXPECT_EQ(words[0].start, 0.5);
+  EXPECT_EQ(words[0].end, 1.25);
+  // A tier named "words" (any case) wins over the other tiers.
+  write_text(dir.file("w.TextGrid"), grid_of({{"phones", "HH"}, {"Words", "hi"}}));
+  EXPECT_EQ(tx::read_textgrid(dir.file("w.TextGrid")).at(0).text, "hi");
+  // Two interval tiers, neither a words tier: the reader cannot guess.
+  write_text(dir.file("two.TextGrid"), grid_of({{"ortho", "hello"}, {"phones", "HH"}}));
+  const std::string msg = error_of([&] { tx::read_textgrid(dir.file("two.TextGrid")); });
+  EXPECT_CONTAINS(msg, "no tier named \"words\" and more than one interval tier");
+  EXPECT_CONTAINS(msg, "\"ortho\" (IntervalTier), \"phones\" (IntervalTier)");
+  EXPECT_CONTAINS(msg, "--tier NAME");
+  write_text(dir.file("none.TextGrid"), grid_of({}, "beats"));
+  EXPECT_CONTAINS(error_of([&] { tx::read_textgrid(dir.file("none.TextGrid")); }), "and no interval tier");
+}
+
+TEST(TextGridTier, ATierWithAnotherFormatIsAnError) {
+  TempDir dir;
+  write_text(dir.file("a.tsv"), "0\t1\thello\n");
+  EXPECT_CONTAINS(error_of([&] { tx::read_transcript(dir.file("a.tsv"), tx::TranscriptFormat::Auto, "words"); }),
+                  "a.tsv: a tier (\"words\") was given, but only a TextGrid transcript has tiers");
+}
+
 }  // namespace

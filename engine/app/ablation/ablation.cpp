@@ -4,7 +4,7 @@
 #include <map>
 #include <random>
 
-#include "audio/wav.h"
+#include "audio/audio_file.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/error.h"
 #include "engine/metrics/evaluate.h"
@@ -258,7 +258,7 @@ Recording read_recording(const AblationInputs& in, const Config& base) {
   rec.motion = bvh_read(in.motion);
   motion_lock_and_smooth(rec.motion, base.cleanup.lock_joints, base.cleanup.smooth_window, base.cleanup.smooth_order,
                          in.motion);
-  rec.sound = audio::read_wav(in.audio);
+  rec.sound = audio::read_audio(in.audio);
   rec.has_words = !in.transcript.empty();
   if (rec.has_words) {
     rec.words = text::read_transcript(in.transcript);

@@ -58,8 +58,9 @@ std::vector<std::string> eligible_pool(const ClipMap& pool, const std::set<std::
 }
 
 // One result per test clip: skipped when its output exists (unless --force), failed when it
-// could not be paired, else pending.
-std::vector<BatchClipResult> initial_results(const Pairing& pairing, const fs::path& out_dir, bool force) {
+// could not be paired or its files are unusable (ClipFiles::error), else pending.
+std::vector<BatchClipResult> initial_results(const Pairing& pairing, const ClipMap& tests, const fs::path& out_dir,
+                                             bool force) {
   const std::map<std::string, std::string> previous_pairs = read_previous_pairs(out_dir);
   const std::map<std::string, PreviousClip> previous_clips = read_previous_summary(out_dir);
   std::vector<BatchClipResult> clips(pairing.test_stems.size());
@@ -75,9 +76,9 @@ std::vector<BatchClipResult> initial_results(const Pairing& pairing, const fs::p
       const auto it = previous_pairs.find(c.test_stem);
       if (it != previous_pairs.end()) c.reference_stem = it->second;
       carry_over_previous(c, previous_clips);
-    } else if (!pairing.errors[i].empty()) {
+    } else if (!pairing.errors[i].empty() || !tests.at(c.test_stem).error.empty()) {
       c.status = BatchClipStatus::Failed;
-      c.error = pairing.errors[i];
+      c.error = tests.at(c.test_stem).error.empty() ? pairing.errors[i] : tests.at(c.test_stem).error;
       c.output.clear();
     }
   }
@@ -148,13 +149,14 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
   summary.seed = clip_config.seed;
 
   const Clips clips = collect_clips(options);
+  summary.notes = clips.notes;
   std::set<std::string> blacklist;
   if (!options.blacklist.empty()) blacklist = read_blacklist(options.blacklist);
   const std::vector<std::string> pool_stems = eligible_pool(clips.pool, blacklist, options, &summary.blacklisted);
   const fs::path out_dir = prepare_output_folder(options, progress);
 
   const Pairing pairs = pair_tests(options, pairing, clips, blacklist, pool_stems, clip_config.seed);
-  summary.clips = initial_results(pairs, out_dir, options.force);
+  summary.clips = initial_results(pairs, clips.tests, out_dir, options.force);
   summary.references = reference_results(clips.pool, pool_stems, summary.clips);
   write_pairs_csv(out_dir, summary.clips);  // first, so the pairing is on record even if the run is interrupted
 

@@ -10,8 +10,12 @@
 //   bvh, wav, tsv, textgrid, json, transcript, transcripts (any case). Extensions are matched
 //   ignoring case: .bvh, .wav, and transcripts .tsv (preferred), .TextGrid, .json. Pool stems
 //   need a BVH and a WAV (a BVH without WAV is reported and left out; a WAV without BVH is a
-//   test clip and ignored in a pool); test stems need a WAV. The same stem found twice (in
-//   two folders or two layouts) is a setup error.
+//   test clip and ignored in a pool); test stems need a WAV. Audio in another format (.flac,
+//   .mp3, .ogg, .oga, .opus, .m4a, .aac, .aif, .aiff) stands in for a missing WAV. A test stem
+//   with a transcript but no audio, and a test file that is a broken symbolic link, fail that
+//   clip with the reason in the summary; a pool file that is a broken link is noted and fails
+//   the clips that draw it. The same stem found twice (in two folders or two layouts) is a
+//   setup error.
 // - A clip manifest (`--pool-manifest`, `--test-manifest`, repeatable) is a CSV with a header
 //   row naming its columns: `stem`, `bvh` (alias `motion`), `wav` (alias `audio`), `transcript`
 //   (alias `tsv`, `textgrid`). `stem` defaults to the WAV's (tests) or BVH's (pool) file stem;
@@ -152,6 +156,9 @@ struct BatchSummary {
   double seconds = 0;        // wall time of the whole run
   double graph_seconds = 0;  // sum of graph build times
   bool interrupted = false;  // options.cancel was raised
+  // Files found but not used or unusable (a pool BVH without audio, a broken symbolic link), as
+  // the first progress lines said them.
+  std::vector<std::string> notes;
 };
 
 // Runs a batch. Progress goes to `progress`. Throws gmg::Error on a setup problem (no pool or test

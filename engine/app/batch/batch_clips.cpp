@@ -13,7 +13,15 @@ namespace {
 // The files of one stem found in a folder.
 struct StemFiles {
   std::string bvh, wav, tsv, textgrid, json;
+  std::string audio;   // speech in another format (FLAC, MP3, ...), used when there is no .wav
+  std::string broken;  // why a file of the stem is unusable (a broken symbolic link), "" = fine
 };
+
+// Audio formats other than WAV that read_audio decodes (audio/audio_file.h).
+bool is_other_audio(const std::string& ext) {
+  static const std::set<std::string> exts = {".flac", ".mp3", ".ogg", ".oga", ".opus", ".m4a", ".aac", ".aif", ".aiff"};
+  return exts.count(ext) > 0;
+}
 
 using StemMap = std::map<std::string, StemFiles>;
 
@@ -25,16 +33,34 @@ std::string StemFiles::*slot_of(const fs::path& p) {
   if (ext == ".tsv") return &StemFiles::tsv;
   if (ext == ".textgrid") return &StemFiles::textgrid;
   if (ext == ".json") return &StemFiles::json;
+  if (is_other_audio(ext)) return &StemFiles::audio;
   return nullptr;
 }
 
+// A symbolic link whose target does not exist: `is_regular_file` says no, and the clip would
+// vanish without a word. Kept as a file of its stem, with the reason.
+bool is_broken_link(const fs::directory_entry& e, std::string* why) {
+  std::error_code ec;
+  if (!e.is_symlink(ec) || ec || fs::exists(e.path(), ec)) return false;
+  const fs::path target = fs::read_symlink(e.path(), ec);
+  *why = e.path().string() + " is a broken symbolic link" + (ec ? "" : " (to " + target.string() + ")");
+  return true;
+}
+
 // Sorted, so discovery (and any "given twice" message) does not depend on the file system.
-std::vector<fs::path> sorted_regular_files(const fs::path& dir) {
+// Broken symbolic links are listed too, each with its reason in *broken.
+std::vector<fs::path> sorted_regular_files(const fs::path& dir, std::map<fs::path, std::string>* broken) {
   std::vector<fs::path> files;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code ec2;
-    if (it->is_regular_file(ec2)) files.push_back(it->path());
+    std::string why;
+    if (it->is_regular_file(ec2)) {
+      files.push_back(it->path());
+    } else if (is_broken_link(*it, &why)) {
+      files.push_back(it->path());
+      (*broken)[it->path()] = why;
+    }
   }
   if (ec) throw Error(dir.string() + ": cannot list folder (" + ec.message() + ")");
   std::sort(files.begin(), files.end());
@@ -42,16 +68,20 @@ std::vector<fs::path> sorted_regular_files(const fs::path& dir) {
 }
 
 void scan_files(const fs::path& dir, StemMap& out) {
-  for (const fs::path& p : sorted_regular_files(dir)) {
+  std::map<fs::path, std::string> broken;
+  for (const fs::path& p : sorted_regular_files(dir, &broken)) {
     const std::string name = p.filename().string();
     if (name.empty() || name[0] == '.') continue;
     std::string StemFiles::*const slot = slot_of(p);
     if (!slot) continue;
-    std::string& s = out[p.stem().string()].*slot;
+    StemFiles& f = out[p.stem().string()];
+    std::string& s = f.*slot;
     if (!s.empty())
-      throw Error("clip '" + p.stem().string() + "' has two " + ascii_lower(p.extension().string()) + " files: " + s +
-                  " and " + p.string());
+      throw Error("clip '" + p.stem().string() + "' has two " +
+                  (slot == &StemFiles::audio ? std::string("audio") : ascii_lower(p.extension().string())) +
+                  " files: " + s + " and " + p.string());
     s = p.string();
+    if (broken.count(p) && f.broken.empty()) f.broken = broken[p];
   }
 }
 
@@ -78,6 +108,14 @@ std::string pick_transcript(const StemFiles& f) {
   if (!f.tsv.empty()) return f.tsv;
   if (!f.textgrid.empty()) return f.textgrid;
   return f.json;
+}
+
+// The speech of a stem: its WAV, else its audio in another format (with a note when both exist,
+// so the other file is not left out without a word).
+std::string pick_audio(const std::string& stem, const StemFiles& f, Clips& clips) {
+  if (!f.wav.empty() && !f.audio.empty())
+    clips.notes.push_back("clip '" + stem + "': " + f.audio + " not used: " + f.wav + " is read");
+  return f.wav.empty() ? f.audio : f.wav;
 }
 
 void add_clip(ClipMap& clips, ClipFiles c, const char* role) {
@@ -151,19 +189,31 @@ void read_clip_manifest(const std::string& path, bool pool, ClipMap& clips) {
 
 void add_pool_folder(const std::string& dir, Clips& clips) {
   for (const auto& [stem, f] : scan_clip_folder(dir)) {
-    if (f.bvh.empty()) continue;  // a WAV alone is a test clip
-    if (f.wav.empty()) {
-      clips.notes.push_back("pool: " + f.bvh + " has no WAV beside it; not used");
+    if (f.bvh.empty()) {  // audio alone is a test clip; a transcript alone is a clip missing its files
+      if (f.wav.empty() && f.audio.empty() && !pick_transcript(f).empty())
+        clips.notes.push_back("pool: " + pick_transcript(f) + " has no BVH and no audio beside it; not used");
       continue;
     }
-    add_clip(clips.pool, ClipFiles{stem, f.bvh, f.wav, pick_transcript(f), dir}, "pool");
+    const std::string audio = pick_audio(stem, f, clips);
+    if (audio.empty()) {
+      clips.notes.push_back("pool: " + f.bvh + " has no audio (WAV) beside it; not used");
+      continue;
+    }
+    // A broken link stays in the pool: the clips that draw it fail with the reason.
+    if (!f.broken.empty()) clips.notes.push_back("pool: " + f.broken);
+    add_clip(clips.pool, ClipFiles{stem, f.bvh, audio, pick_transcript(f), dir}, "pool");
   }
 }
 
 void add_test_folder(const std::string& dir, Clips& clips) {
   for (const auto& [stem, f] : scan_clip_folder(dir)) {
-    if (f.wav.empty()) continue;
-    add_clip(clips.tests, ClipFiles{stem, "", f.wav, pick_transcript(f), dir}, "test");
+    const std::string audio = pick_audio(stem, f, clips), transcript = pick_transcript(f);
+    std::string error = f.broken;
+    if (audio.empty()) {
+      if (transcript.empty()) continue;  // a BVH alone beside the tests (ground truth) is not a test clip
+      error = "the transcript " + transcript + " has no audio (WAV) beside it";
+    }
+    add_clip(clips.tests, ClipFiles{stem, "", audio, transcript, dir, error}, "test");
   }
 }
 

@@ -110,7 +110,11 @@ void add_batch_command(CLI::App& app, int* exit_code) {
       ->check(CLI::IsMember(names_of(kBatchPairingNames)));
   sub->add_option("--manifest", o.pairs_manifest, "CSV test_stem,reference_stem (implies --pairing manifest)");
   sub->add_option("--blacklist", o.blacklist, "file of pool stems to leave out, one a line ('#' comments)");
-  CLI::Option* seed_opt = sub->add_option("--seed", st->seed, "seed of the pairing draw and of every reenactment");
+  CLI::Option* seed_opt =
+      sub->add_option("--seed", st->seed,
+                      "seed of the pairing draw and of every reenactment (default: the config's seed, " +
+                          std::to_string(Config{}.seed) + ")")
+          ->default_str("");
   sub->add_option("--jobs,-j", o.jobs, "parallel clips (default 0: all cores)")->check(CLI::NonNegativeNumber);
   sub->add_flag("--force", o.force, "redo clips whose output BVH exists");
   sub->add_flag("--reports", o.reports, "also write OUTDIR/<stem>.json, each reenactment's report");

@@ -37,15 +37,16 @@ std::string fixed(double v, int decimals);
 // ---- Clips (batch_clips.cpp) ----------------------------------------------------------------
 
 struct ClipFiles {
-  std::string stem, bvh, wav, transcript;  // bvh is empty for a test clip
+  std::string stem, bvh, wav, transcript;  // bvh is empty for a test clip; wav is the audio in any format
   std::string origin;                      // folder or "manifest:line", for messages
+  std::string error{};                     // why the clip cannot be made (a broken link, no audio); "" = fine
 };
 
 using ClipMap = std::map<std::string, ClipFiles>;  // by stem
 
 struct Clips {
   ClipMap pool, tests;
-  std::vector<std::string> notes;  // files found but not used (a BVH without WAV in a pool)
+  std::vector<std::string> notes;  // files found but not used (a BVH without WAV in a pool), broken links
 };
 
 // Every pool and test clip of the options' folders and manifests (see batch.h). Throws

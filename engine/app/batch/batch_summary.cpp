@@ -54,6 +54,7 @@ ojson summary_json(const BatchSummary& s, const BatchOptions& o, BatchPairing pa
                  {"blacklisted", s.blacklisted}};
   j["seconds"] = s.seconds;
   j["graph_seconds"] = s.graph_seconds;
+  j["notes"] = s.notes;
   ojson refs = ojson::array();
   for (const BatchReferenceResult& r : s.references) refs.push_back(reference_json(r));
   j["references"] = refs;

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include "audio/audio_file.h"
 #include "audio/onset.h"
-#include "audio/wav.h"
 #include "engine/app/report_facts.h"
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
-#include "engine/motion/bvh.h"
+#include "engine/motion/motion_file.h"
 
 namespace gmg::render {
 namespace {
@@ -17,8 +17,8 @@ namespace {
 constexpr glm::dvec3 kMainColor{0.30, 0.50, 0.82}, kCompareColor{0.90, 0.55, 0.22};
 constexpr glm::dvec3 kSkyTop{0.93, 0.94, 0.96}, kSkyBottom{0.80, 0.83, 0.87};
 
-Figure load_figure(const std::string& path) {
-  const Motion m = bvh_read(path);
+Figure load_figure(const std::string& path, const std::string& skeleton) {
+  const Motion m = motion_read(path, skeleton);
   if (m.frame_count == 0) throw Error(path + ": the motion has no frames to render");
   return figure_from_motion(m);
 }
@@ -38,7 +38,7 @@ std::vector<double> speech_onsets(const audio::Audio& sound, const ReportFacts& 
 void read_speech(const RenderInputs& in, Scene& s) {
   audio::Audio sound;
   if (!in.audio.empty()) {
-    sound = audio::read_wav(in.audio);
+    sound = audio::read_audio(in.audio);
     s.audio_s = sound.duration();
     if (std::abs(s.audio_s - s.frame_count / s.fps) > 1.0)
       s.notes.push_back(in.audio + " lasts " + format_seconds(s.audio_s) + " and " + in.motion + " " +
@@ -135,7 +135,7 @@ Scene scene_load(const RenderInputs& in, const RenderOptions& options) {
   check_size(options);
   Scene s;
   Panel main;
-  main.figure = load_figure(in.motion);
+  main.figure = load_figure(in.motion, in.skeleton);
   main.style.color = kMainColor;
   main.label = std::filesystem::path(in.motion).filename().string();
   s.fps = main.figure.fps;
@@ -143,7 +143,7 @@ Scene scene_load(const RenderInputs& in, const RenderOptions& options) {
   s.panels.push_back(std::move(main));
   if (!in.compare.empty()) {
     Panel other;
-    other.figure = load_figure(in.compare);
+    other.figure = load_figure(in.compare, in.skeleton);
     other.style.color = kCompareColor;
     other.label = std::filesystem::path(in.compare).filename().string();
     const double a = s.frame_count / s.fps, b = other.figure.frame_count / other.figure.fps;
@@ -155,7 +155,7 @@ Scene scene_load(const RenderInputs& in, const RenderOptions& options) {
   s.width = options.width * static_cast<int>(s.panels.size());
   s.height = options.height;
   read_speech(in, s);
-  if (!in.transcript.empty()) make_captions_for(text::read_transcript(in.transcript, in.transcript_format), s);
+  if (!in.transcript.empty()) make_captions_for(text::read_transcript(in.transcript, in.transcript_format, in.tier), s);
   lay_out(options, s);
   Box box;
   for (const Panel& p : s.panels) box.add(figure_box(p.figure));

@@ -16,10 +16,12 @@
 namespace gmg::render {
 
 struct RenderInputs {
-  std::string motion;      // BVH (required); the video has its frame count and rate
-  std::string audio;       // WAV muxed into the video (and its onsets marked, with a report); "" = silent
+  std::string motion;      // BVH or SMPL-X .npz (required); the video has its frame count and rate
+  std::string skeleton;    // BVH skeleton template of .npz motions (engine/motion/npz.h); "" = none
+  std::string audio;       // audio muxed into the video (and its onsets marked, with a report); "" = silent
   std::string transcript;  // words shown as captions; "" = none
   text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
+  std::string tier;     // TextGrid tier of the captions; "" = the default
   std::string report;   // reenactment report: junction markers, and onset markers with the audio; "" = none
   std::string compare;  // a second BVH drawn to the right, same camera; "" = none
   std::string output;   // the video (.mp4, .mkv or .mov)

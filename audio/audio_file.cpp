@@ -1,0 +1,102 @@
+// Audio files by format: WAV through read_wav, the rest through aubio_source.
+#include "audio/audio_file.h"
+
+#include <aubio/aubio.h>
+#include <dlfcn.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+#include "engine/core/error.h"
+#include "engine/core/strings.h"
+
+namespace gmg::audio {
+namespace {
+
+// aubio prints its errors to stderr. They are kept per thread instead, so the error thrown names
+// aubio's reason once, on one line, and concurrent reads (gmg batch) do not mix messages.
+thread_local std::string aubio_message;
+
+void keep_aubio_message(sint_t /*level*/, const char_t* message, void* /*data*/) {
+  aubio_message = std::string(trim(message ? message : ""));
+}
+
+// FFmpeg, under aubio, prints warnings on stderr for ordinary files ("Could not update timestamps
+// for skipped samples" for every MP3 with an encoder delay). Only its errors are worth a line.
+// The library is aubio's dependency, not ours, so its log level is set through the symbol when
+// this aubio has it (AV_LOG_ERROR = 16 in libavutil/log.h).
+void quiet_ffmpeg_warnings() {
+  using SetLevel = void (*)(int);
+  if (void* f = dlsym(RTLD_DEFAULT, "av_log_set_level")) reinterpret_cast<SetLevel>(f)(16);
+}
+
+void route_aubio_log() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    aubio_log_set_level_function(AUBIO_LOG_ERR, keep_aubio_message, nullptr);
+    aubio_log_set_level_function(AUBIO_LOG_WRN, keep_aubio_message, nullptr);
+    quiet_ffmpeg_warnings();
+  });
+}
+
+// The engine's wording for a file that cannot be read at all (as engine/core/files.h words it).
+void check_readable(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+}
+
+struct Source {
+  aubio_source_t* source = nullptr;
+  fmat_t* buffer = nullptr;
+  ~Source() {
+    if (buffer) del_fmat(buffer);
+    if (source) del_aubio_source(source);
+  }
+};
+
+constexpr uint_t kHop = 4096;
+
+}  // namespace
+
+bool is_wav_path(const std::string& path) { return ends_with_ci(path, ".wav"); }
+
+Audio read_audio(const std::string& path) {
+  if (is_wav_path(path)) return read_wav(path);
+  check_readable(path);
+  route_aubio_log();
+  aubio_message.clear();
+  Source s;
+  s.source = new_aubio_source(path.c_str(), 0, kHop);  // 0: the file's own sample rate
+  if (!s.source)
+    throw Error(path + ": cannot decode as audio" + (aubio_message.empty() ? "" : " (aubio: " + aubio_message + ")"));
+  const uint_t rate = aubio_source_get_samplerate(s.source);
+  const uint_t channels = aubio_source_get_channels(s.source);
+  if (rate == 0 || rate > 1000000 || channels == 0)
+    throw Error(path + ": the decoder reports " + std::to_string(rate) + " Hz and " + std::to_string(channels) +
+                " channels");
+  s.buffer = new_fmat(channels, kHop);
+  Audio a;
+  a.sample_rate = static_cast<int>(rate);
+  const double inv_channels = 1.0 / channels;
+  uint_t read = kHop;
+  while (read == kHop) {
+    read = 0;
+    aubio_source_do_multi(s.source, s.buffer, &read);
+    for (uint_t i = 0; i < read; ++i) {
+      double sum = 0.0;
+      for (uint_t c = 0; c < channels; ++c) sum += s.buffer->data[c][i];
+      if (!std::isfinite(sum))
+        throw Error(path + ": sample " + std::to_string(a.samples.size()) + " is not finite after decoding");
+      a.samples.push_back(static_cast<float>(sum * inv_channels));
+    }
+  }
+  return a;
+}
+
+}  // namespace gmg::audio

@@ -1,0 +1,398 @@
+// NumPy .npy parsing and writing, and the zip layer of .npz archives (libzip).
+#include "engine/motion/npy.h"
+
+#include <zip.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "engine/core/error.h"
+
+namespace gmg {
+namespace {
+
+constexpr char kMagic[] = "\x93NUMPY";
+constexpr std::size_t kMagicSize = 6;
+// Largest member or array read: far above any motion capture (an hour of SMPL-X at 30 fps in
+// float64 is 140 MB), far below what would exhaust memory on a crafted archive.
+constexpr std::uint64_t kMaxBytes = std::uint64_t{1} << 31;
+
+struct Dtype {
+  const char* name;
+  std::size_t size;
+  bool is_float;
+};
+constexpr Dtype kDtypes[] = {{"<f8", 8, true}, {"<f4", 4, true}, {"<i8", 8, false}, {"<i4", 4, false}};
+
+std::string describe_dtype_problem(const std::string& d) {
+  if (!d.empty() && d[0] == '>') return "big-endian dtype '" + d + "' is not supported (save it little-endian)";
+  if (d.size() > 1 && (d[1] == 'U' || d[1] == 'S')) return "holds text (dtype '" + d + "'), not numbers";
+  if (d.size() > 1 && d[1] == 'O') return "holds Python objects (dtype '" + d + "'), not numbers";
+  return "dtype '" + d + "' is not supported (expected float64 '<f8', float32 '<f4', int64 '<i8' or int32 '<i4')";
+}
+
+// The header of an .npy file: the Python dict literal numpy writes,
+// {'descr': '<f8', 'fortran_order': False, 'shape': (3, 4), }
+class HeaderParser {
+ public:
+  HeaderParser(std::string_view text, const std::string& name) : s_(text), name_(name) {}
+
+  void parse(std::string& descr, bool& fortran, std::vector<std::uint64_t>& shape) {
+    bool seen_descr = false, seen_fortran = false, seen_shape = false;
+    expect('{');
+    while (!eat('}')) {
+      const std::string key = string_literal("a key");
+      expect(':');
+      if (key == "descr") {
+        skip_space();
+        if (pos_ < s_.size() && s_[pos_] == '[') fail("a structured dtype is not supported (expected plain numbers)");
+        descr = string_literal("the dtype");
+        mark(seen_descr, key);
+      } else if (key == "fortran_order") {
+        fortran = boolean();
+        mark(seen_fortran, key);
+      } else if (key == "shape") {
+        shape = tuple();
+        mark(seen_shape, key);
+      } else {
+        fail("unexpected key '" + key + "' (expected 'descr', 'fortran_order', 'shape')");
+      }
+      if (!eat(',')) {
+        expect('}');
+        break;
+      }
+    }
+    for (; pos_ < s_.size(); ++pos_)
+      if (s_[pos_] != ' ' && s_[pos_] != '\n') fail("unexpected text after the header's closing '}'");
+    if (!seen_descr || !seen_fortran || !seen_shape)
+      fail(std::string("the header lacks '") +
+           (!seen_descr     ? "descr"
+            : !seen_fortran ? "fortran_order"
+                            : "shape") +
+           "'");
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw Error(name_ + ": malformed .npy header: " + what); }
+
+  void mark(bool& seen, const std::string& key) const {
+    if (seen) fail("key '" + key + "' given twice");
+    seen = true;
+  }
+
+  void skip_space() {
+    while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\n' || s_[pos_] == '\t')) ++pos_;
+  }
+
+  bool eat(char c) {
+    skip_space();
+    if (pos_ < s_.size() && s_[pos_] == c) {
+      ++pos_;
+      return true;
+    }
+    return false;
+  }
+
+  void expect(char c) {
+    if (!eat(c)) fail(std::string("expected '") + c + "'");
+  }
+
+  std::string string_literal(const char* what) {
+    skip_space();
+    if (pos_ >= s_.size() || (s_[pos_] != '\'' && s_[pos_] != '"')) fail(std::string("expected ") + what);
+    const char quote = s_[pos_++];
+    const std::size_t end = s_.find(quote, pos_);
+    if (end == std::string_view::npos) fail("unterminated string");
+    std::string out(s_.substr(pos_, end - pos_));
+    pos_ = end + 1;
+    return out;
+  }
+
+  bool boolean() {
+    skip_space();
+    for (const auto& [word, value] : {std::pair<std::string_view, bool>{"True", true}, {"False", false}}) {
+      if (s_.substr(pos_, word.size()) == word) {
+        pos_ += word.size();
+        return value;
+      }
+    }
+    fail("'fortran_order' must be True or False");
+  }
+
+  std::vector<std::uint64_t> tuple() {
+    std::vector<std::uint64_t> out;
+    expect('(');
+    while (!eat(')')) {
+      skip_space();
+      std::uint64_t v = 0;
+      const std::size_t start = pos_;
+      while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') {
+        if (v > kMaxBytes) fail("a dimension of the shape is too large");
+        v = v * 10 + static_cast<std::uint64_t>(s_[pos_++] - '0');
+      }
+      if (pos_ == start) fail("the shape must be a tuple of whole numbers");
+      out.push_back(v);
+      if (!eat(',')) {
+        expect(')');
+        break;
+      }
+    }
+    return out;
+  }
+
+  std::string_view s_;
+  const std::string& name_;
+  std::size_t pos_ = 0;
+};
+
+std::string shape_text(const std::vector<std::uint64_t>& shape) {
+  std::string s = "(";
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
+  return s + (shape.size() == 1 ? ",)" : ")");
+}
+
+std::uint64_t read_le(const unsigned char* p, std::size_t n) {
+  std::uint64_t v = 0;
+  for (std::size_t i = n; i-- > 0;) v = (v << 8) | p[i];
+  return v;
+}
+
+double decode(const unsigned char* p, const Dtype& t) {
+  const std::uint64_t bits = read_le(p, t.size);
+  if (t.is_float && t.size == 8) {
+    double d;
+    std::memcpy(&d, &bits, sizeof d);
+    return d;
+  }
+  if (t.is_float) {
+    const auto b32 = static_cast<std::uint32_t>(bits);
+    float f;
+    std::memcpy(&f, &b32, sizeof f);
+    return f;
+  }
+  if (t.size == 8) return static_cast<double>(static_cast<std::int64_t>(bits));
+  return static_cast<double>(static_cast<std::int32_t>(static_cast<std::uint32_t>(bits)));
+}
+
+void append_le(std::string& out, std::uint64_t v, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+
+// numpy's format 1.0 preamble: magic, version, header length, then the dict padded with spaces
+// and a newline so the data starts at a multiple of 64 bytes.
+std::string npy_preamble(const std::string& descr, const std::vector<std::uint64_t>& shape) {
+  std::string dict = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': " + shape_text(shape) + ", }";
+  const std::size_t unpadded = kMagicSize + 4 + dict.size() + 1;
+  dict.append((64 - unpadded % 64) % 64, ' ');
+  dict += '\n';
+  std::string out(kMagic, kMagicSize);
+  out += '\x01';
+  out += '\x00';
+  append_le(out, dict.size(), 2);
+  return out + dict;
+}
+
+}  // namespace
+
+NpyArray npy_parse(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < kMagicSize + 4 || bytes.substr(0, kMagicSize) != std::string_view(kMagic, kMagicSize))
+    throw Error(name + ": not a .npy array (no \\x93NUMPY magic)");
+  const auto* u = reinterpret_cast<const unsigned char*>(bytes.data());
+  const int major = u[6];
+  if (major < 1 || major > 3)
+    throw Error(name + ": .npy format version " + std::to_string(major) + "." + std::to_string(u[7]) +
+                " is not supported (expected 1, 2 or 3)");
+  const std::size_t length_size = major == 1 ? 2 : 4;
+  if (bytes.size() < 8 + length_size) throw Error(name + ": truncated .npy header");
+  const std::uint64_t header_size = read_le(u + 8, length_size);
+  const std::uint64_t data_offset = 8 + length_size + header_size;
+  if (data_offset > bytes.size())
+    throw Error(name + ": truncated .npy header (it declares " + std::to_string(header_size) + " bytes, the file has " +
+                std::to_string(bytes.size() - 8 - length_size) + ")");
+
+  NpyArray a;
+  bool fortran = false;
+  HeaderParser(bytes.substr(8 + length_size, header_size), name).parse(a.dtype, fortran, a.shape);
+  const Dtype* type = nullptr;
+  for (const Dtype& t : kDtypes)
+    if (a.dtype == t.name) type = &t;
+  if (!type) throw Error(name + ": " + describe_dtype_problem(a.dtype));
+  if (fortran && a.shape.size() > 1)
+    throw Error(name + ": Fortran-order arrays are not supported (save with numpy.ascontiguousarray)");
+
+  std::uint64_t count = 1;
+  for (std::uint64_t d : a.shape) {
+    if (d != 0 && count > kMaxBytes / d) throw Error(name + ": shape " + shape_text(a.shape) + " is too large");
+    count *= d;
+  }
+  if (count > kMaxBytes / type->size) throw Error(name + ": shape " + shape_text(a.shape) + " is too large");
+  const std::uint64_t need = count * type->size, have = bytes.size() - data_offset;
+  if (have != need)
+    throw Error(name + ": shape " + shape_text(a.shape) + " of " + a.dtype + " needs " + std::to_string(need) +
+                " bytes of data, the array has " + std::to_string(have) + (have < need ? " (truncated)" : ""));
+  a.values.resize(static_cast<std::size_t>(count));
+  const unsigned char* p = u + data_offset;
+  for (std::size_t i = 0; i < a.values.size(); ++i, p += type->size) a.values[i] = decode(p, *type);
+  return a;
+}
+
+std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t>& shape,
+                       const std::vector<double>& values) {
+  std::uint64_t count = 1;
+  for (std::uint64_t d : shape) count *= d;
+  if (count != values.size())
+    throw Error("npy_format: shape " + shape_text(shape) + " does not hold " + std::to_string(values.size()) +
+                " values");
+  std::string out = npy_preamble(dtype, shape);
+  if (dtype == "<f8") {
+    for (double v : values) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &v, sizeof bits);
+      append_le(out, bits, 8);
+    }
+  } else if (dtype == "<i4") {
+    for (double v : values) {
+      if (v != std::trunc(v) || v < std::numeric_limits<std::int32_t>::min() ||
+          v > std::numeric_limits<std::int32_t>::max())
+        throw Error("npy_format: " + std::to_string(v) + " is not a 32-bit integer");
+      append_le(out, static_cast<std::uint32_t>(static_cast<std::int32_t>(v)), 4);
+    }
+  } else {
+    throw Error("npy_format: cannot write dtype '" + dtype + "'");
+  }
+  return out;
+}
+
+std::string npy_format_text(const std::string& text) {
+  std::string out = npy_preamble("<U" + std::to_string(text.size()), {});
+  for (char c : text) append_le(out, static_cast<unsigned char>(c), 4);
+  return out;
+}
+
+// ---- zip (libzip) -----------------------------------------------------------------------------
+
+struct ZipReader::Handle {
+  zip_t* zip = nullptr;
+  ~Handle() {
+    if (zip) zip_discard(zip);
+  }
+};
+
+ZipReader::ZipReader(const std::string& bytes, const std::string& name)
+    : zip_(std::make_unique<Handle>()), name_(name), archive_size_(bytes.size()) {
+  // libzip opens zero bytes as an archive without members; as an .npz it is a truncated file.
+  if (bytes.empty()) throw Error(name + ": not a readable zip archive, as an .npz must be (the file is empty)");
+  zip_error_t error;
+  zip_error_init(&error);
+  zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
+  if (source) zip_->zip = zip_open_from_source(source, ZIP_RDONLY | ZIP_CHECKCONS, &error);
+  if (!zip_->zip) {
+    const std::string why = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    zip_source_free(source);
+    throw Error(name + ": not a readable zip archive, as an .npz must be (" + why + ")");
+  }
+  zip_error_fini(&error);
+  const zip_int64_t n = zip_get_num_entries(zip_->zip, 0);
+  for (zip_int64_t i = 0; i < n; ++i) {
+    const char* member = zip_get_name(zip_->zip, static_cast<zip_uint64_t>(i), 0);
+    names_.emplace_back(member ? member : "");
+  }
+}
+
+ZipReader::~ZipReader() = default;
+
+bool ZipReader::has(const std::string& member) const { return zip_name_locate(zip_->zip, member.c_str(), 0) >= 0; }
+
+std::string ZipReader::read(const std::string& member) const {
+  const std::string where = name_ + ": " + member;
+  const zip_int64_t index = zip_name_locate(zip_->zip, member.c_str(), 0);
+  if (index < 0) throw Error(where + ": not in the archive");
+  zip_stat_t st;
+  zip_stat_init(&st);
+  if (zip_stat_index(zip_->zip, static_cast<zip_uint64_t>(index), 0, &st) != 0 ||
+      (st.valid & (ZIP_STAT_SIZE | ZIP_STAT_COMP_SIZE | ZIP_STAT_COMP_METHOD)) !=
+          (ZIP_STAT_SIZE | ZIP_STAT_COMP_SIZE | ZIP_STAT_COMP_METHOD))
+    throw Error(where + ": cannot read the member's sizes (" + zip_strerror(zip_->zip) + ")");
+  if ((st.valid & ZIP_STAT_ENCRYPTION_METHOD) && st.encryption_method != ZIP_EM_NONE)
+    throw Error(where + ": the member is encrypted");
+  if (!zip_compression_method_supported(st.comp_method, 0))
+    throw Error(where + ": compression method " + std::to_string(st.comp_method) + " is not supported");
+  // Before allocating: the declared size must be one the archive can hold (deflate expands at
+  // most about 1032:1), so a crafted header cannot ask for gigabytes.
+  const bool stored = st.comp_method == ZIP_CM_STORE;
+  if (st.comp_size > archive_size_ || (stored ? st.size != st.comp_size : st.size / 1100 > st.comp_size + 1) ||
+      st.size > kMaxBytes)
+    throw Error(where + ": declares " + std::to_string(st.size) + " bytes from " + std::to_string(st.comp_size) +
+                " in an archive of " + std::to_string(archive_size_) + " (corrupt or too large)");
+  zip_file_t* file = zip_fopen_index(zip_->zip, static_cast<zip_uint64_t>(index), 0);
+  if (!file) throw Error(where + ": cannot open the member (" + zip_strerror(zip_->zip) + ")");
+  std::string out(static_cast<std::size_t>(st.size), '\0');
+  std::uint64_t got = 0;
+  zip_int64_t r = 0;
+  while (got < st.size && (r = zip_fread(file, &out[got], st.size - got)) > 0) got += static_cast<std::uint64_t>(r);
+  char extra = 0;
+  // One more read reaches the end of the member, where libzip checks the CRC.
+  if (r >= 0 && got == st.size) r = zip_fread(file, &extra, 1);
+  const std::string why = r < 0 ? zip_file_strerror(file) : "";
+  zip_fclose(file);
+  if (r < 0) throw Error(where + ": corrupt member (" + why + ")");
+  if (got != st.size || r != 0)
+    throw Error(where + ": the member's data does not have its declared size " + std::to_string(st.size));
+  return out;
+}
+
+std::string zip_format(const std::vector<ZipMember>& members, const std::string& name) {
+  zip_error_t error;
+  zip_error_init(&error);
+  auto fail = [&](const std::string& why) -> Error {
+    zip_error_fini(&error);
+    return Error(name + ": cannot make the zip archive (" + why + ")");
+  };
+  zip_source_t* buffer = zip_source_buffer_create(nullptr, 0, 0, &error);
+  if (!buffer) throw fail(zip_error_strerror(&error));
+  zip_t* za = zip_open_from_source(buffer, ZIP_TRUNCATE, &error);
+  if (!za) {
+    zip_source_free(buffer);
+    throw fail(zip_error_strerror(&error));
+  }
+  zip_source_keep(buffer);  // the archive's bytes are read from it after zip_close
+  for (const ZipMember& m : members) {
+    zip_source_t* s = zip_source_buffer(za, m.bytes.data(), m.bytes.size(), 0);
+    const zip_int64_t index = s ? zip_file_add(za, m.name.c_str(), s, ZIP_FL_ENC_UTF_8) : -1;
+    if (index < 0) {
+      if (s) zip_source_free(s);
+      const std::string why = zip_strerror(za);
+      zip_discard(za);
+      zip_source_free(buffer);
+      throw fail(why);
+    }
+    const auto i = static_cast<zip_uint64_t>(index);
+    zip_set_file_compression(za, i, m.deflate ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0);
+    zip_file_set_dostime(za, i, 0, (0 << 9) | (1 << 5) | 1, 0);  // 1980-01-01 00:00
+  }
+  if (zip_close(za) != 0) {
+    const std::string why = zip_strerror(za);
+    zip_discard(za);
+    zip_source_free(buffer);
+    throw fail(why);
+  }
+  zip_stat_t st;
+  zip_stat_init(&st);
+  std::string out;
+  if (zip_source_stat(buffer, &st) != 0 || zip_source_open(buffer) != 0) {
+    const std::string why = zip_error_strerror(zip_source_error(buffer));
+    zip_source_free(buffer);
+    throw fail(why);
+  }
+  out.resize(static_cast<std::size_t>(st.size));
+  const zip_int64_t r = out.empty() ? 0 : zip_source_read(buffer, &out[0], st.size);
+  zip_source_close(buffer);
+  zip_source_free(buffer);
+  if (r < 0 || static_cast<std::uint64_t>(r) != st.size) throw fail("short read of the archive in memory");
+  zip_error_fini(&error);
+  return out;
+}
+
+}  // namespace gmg

@@ -1,0 +1,78 @@
+// NumPy arrays: .npy files and .npz archives (a zip of .npy files), the layer under
+// engine/motion/npz.h. Only what motion files need: little-endian float and integer arrays in C
+// order, and scalar text for writing. The zip layer is libzip.
+//
+// Reading is strict and bounded: the header is a Python dict literal with exactly the keys
+// 'descr', 'fortran_order' and 'shape'; the data must have exactly the size the shape says; an
+// archive member's declared size is checked against the archive's size before anything is
+// allocated. Every problem is a gmg::Error naming the archive and the array ("x.npz: poses.npy:
+// ...").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gmg {
+
+// One numeric array, its values converted to double (exact for every accepted dtype except
+// integers beyond 2^53, which motion files do not hold).
+struct NpyArray {
+  std::string dtype;                 // "<f8", "<f4", "<i8" or "<i4", as the header gave it
+  std::vector<std::uint64_t> shape;  // empty for a scalar (shape ())
+  std::vector<double> values;        // C order; as many as the product of shape (1 for a scalar)
+};
+
+// Parses the bytes of one .npy file (format versions 1, 2 and 3). `name` labels errors
+// ("x.npz: poses.npy"). Rejects a bad magic or version, a header that is not the dict numpy
+// writes, another dtype (big-endian, text, object, structured), Fortran order with more than one
+// dimension, and data shorter or longer than the shape needs. NaN and infinite values are kept:
+// the caller decides what they mean.
+NpyArray npy_parse(std::string_view bytes, const std::string& name);
+
+// The .npy bytes (format 1.0, header padded to 64 bytes as numpy pads it) of a C-order array.
+// dtype "<f8" writes the values as doubles, "<i4" as 32-bit integers (values must be whole and
+// in range).
+std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t>& shape,
+                       const std::vector<double>& values);
+
+// The .npy bytes of a 0-d text array (dtype "<U<len>", UTF-32), as numpy saves a str. ASCII only.
+std::string npy_format_text(const std::string& text);
+
+// A read-only view of a zip archive held in memory (libzip).
+class ZipReader {
+ public:
+  // Opens the archive in `bytes` (which must outlive the reader). `name` labels errors.
+  ZipReader(const std::string& bytes, const std::string& name);
+  ~ZipReader();
+  ZipReader(const ZipReader&) = delete;
+  ZipReader& operator=(const ZipReader&) = delete;
+
+  // Member names in archive order.
+  const std::vector<std::string>& names() const { return names_; }
+  bool has(const std::string& member) const;
+  // The whole member, decompressed and CRC-checked. Its declared size is checked against the
+  // archive's size (deflate cannot expand more than about 1032:1) and against 2 GiB first.
+  std::string read(const std::string& member) const;
+
+ private:
+  struct Handle;
+  std::unique_ptr<Handle> zip_;
+  std::string name_;
+  std::uint64_t archive_size_ = 0;
+  std::vector<std::string> names_;
+};
+
+struct ZipMember {
+  std::string name;
+  std::string bytes;
+  bool deflate = false;  // false: stored, as np.savez writes
+};
+
+// The bytes of a zip archive holding the members in order, every time stamp 1980-01-01 00:00
+// (as numpy writes), so the same members always give the same bytes.
+std::string zip_format(const std::vector<ZipMember>& members, const std::string& name);
+
+}  // namespace gmg
