@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
@@ -263,8 +264,10 @@ class TextGridParser {
 
 }  // namespace
 
-std::vector<Word> read_textgrid(const std::string& path) {
-  const std::string text = detail::read_text_file(path);
+std::vector<Word> read_textgrid(const std::string& path) { return parse_textgrid(read_file_bytes(path), path); }
+
+std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& path) {
+  const std::string text = detail::decode_to_utf8(bytes, path);
   std::vector<Tier> tiers = TextGridParser(text, path).parse();
 
   const Tier* chosen = nullptr;

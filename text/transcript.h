@@ -70,6 +70,12 @@ std::vector<Word> read_textgrid(const std::string& path);
 // the JSON location, e.g. "[2].alternatives[0].words[5]"), a bad time.
 std::vector<Word> read_google_json(const std::string& path);
 
+// The three readers for a file's bytes already in memory (what read_tsv, read_textgrid and
+// read_google_json do after reading the file); `name` labels errors.
+std::vector<Word> parse_tsv(const std::string& bytes, const std::string& name);
+std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& name);
+std::vector<Word> parse_google_json(const std::string& bytes, const std::string& name);
+
 // Throws gmg::Error naming `path` when some word ends after duration_s + tolerance_s, i.e. the
 // transcript runs past the end of the audio (usually a transcript of another recording).
 void check_transcript_fits(const std::vector<Word>& words, double duration_s, const std::string& path,
