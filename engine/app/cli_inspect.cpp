@@ -7,6 +7,8 @@
 
 #include "engine/app/cli_common.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/json.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
 
@@ -51,12 +53,14 @@ nlohmann::ordered_json stats_json(const MotionGraph& g) {
 }
 
 void run_inspect(const InspectArgs& a) {
+  check_outputs_apart({{"--dot", a.dot}, {"--graphml", a.graphml}}, {{"graph", a.graph}});
+  OutputTransaction outputs;
   const MotionGraph g = graph_load(a.graph);
   const nlohmann::ordered_json j = stats_json(g);
   if (a.json) {
-    std::cout << j.dump() << "\n";
+    std::cout << json_dump(j, -1) << "\n";
   } else {
-    for (auto it = j.begin(); it != j.end(); ++it) std::cout << it.key() << ": " << it.value().dump() << "\n";
+    for (auto it = j.begin(); it != j.end(); ++it) std::cout << it.key() << ": " << json_dump(it.value(), -1) << "\n";
     for (const ClipInfo& c : g.clips)
       std::cout << "clip: " << c.name << " (frames " << c.first_frame << ".." << c.first_frame + c.frame_count - 1
                 << ")\n";
@@ -64,6 +68,7 @@ void run_inspect(const InspectArgs& a) {
   const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);
   if (!a.graphml.empty()) graph_write_graphml(a.graphml, g, from, to);
+  outputs.commit();
 }
 
 }  // namespace

@@ -80,6 +80,13 @@ std::string pick_transcript(const StemFiles& f) {
   return f.json;
 }
 
+// Outputs are named OUTDIR/<stem>.bvh and .json, so a stem must be a plain file name: with a '/'
+// ("../escaped") the output would land outside OUTDIR.
+bool is_plain_stem(const std::string& stem) {
+  return !stem.empty() && stem != "." && stem != ".." && stem.find('/') == std::string::npos &&
+         stem.find('\0') == std::string::npos;
+}
+
 void add_clip(ClipMap& clips, ClipFiles c, const char* role) {
   auto [it, inserted] = clips.emplace(c.stem, c);
   if (!inserted)
@@ -137,6 +144,10 @@ ClipFiles manifest_clip(const CsvRow& row, const ManifestColumns& col, const std
   if (c.wav.empty()) throw Error(error_at_line(path, row.line, "no WAV file given"));
   if (pool && c.bvh.empty()) throw Error(error_at_line(path, row.line, "no BVH file given"));
   if (c.stem.empty()) c.stem = fs::path(pool ? c.bvh : c.wav).stem().string();
+  if (!is_plain_stem(c.stem))
+    throw Error(error_at_line(
+        path, row.line,
+        "stem '" + c.stem + "' is not a plain file name (outputs are named after it inside the output folder)"));
   return c;
 }
 
