@@ -77,7 +77,10 @@ TEST(ConfigSet, BadValuesNameTheKeyAndTheValue) {
   EXPECT_EQ(error_of([&] { config_set(c, "fallbacks", "maybe"); }),
             "config key 'fallbacks': 'maybe' is not true or false");
   EXPECT_EQ(error_of([&] { config_set(c, "seed", "-1"); }), "config key 'seed': must not be negative");
-  EXPECT_EQ(error_of([&] { config_set(c, "l_blend", "3000000000"); }), "config key 'l_blend': out of range");
+  EXPECT_EQ(error_of([&] { config_set(c, "l_blend", "3000000000"); }),
+            "config key 'l_blend': 3000000000 is out of range (0 to 1000)");
+  EXPECT_EQ(error_of([&] { config_set(c, "seed", "18446744073709551616"); }),
+            "config key 'seed': 18446744073709551616 is out of range (0 to 18446744073709551615)");
   EXPECT_EQ(c.graph.l_pn, Config{}.graph.l_pn);  // a rejected value changes nothing
 }
 
@@ -111,10 +114,10 @@ TEST(ConfigFrom, DefaultsThenFileThenAssignmentsInOrderThenValidation) {
   EXPECT_EQ(c.search.l_npaths, Config{}.search.l_npaths);  // untouched keys keep their default
   const Config d = config_from("", {});
   EXPECT_EQ(config_to_json(d), config_to_json(Config{}));
-  // Validation runs on the result: l_pn must be at least 1.
-  const std::string e = error_of([&] { config_from(file, {"l_pn=0"}); });
+  // Validation runs on the result: w_full must have l_feat weights.
+  const std::string e = error_of([&] { config_from(file, {"l_feat=3"}); });
   EXPECT_EQ(e.rfind("invalid config: ", 0), 0u) << e;
-  EXPECT_NE(e.find("l_pn"), std::string::npos) << e;
+  EXPECT_NE(e.find("w_full"), std::string::npos) << e;
 }
 
 TEST(ConfigLoadFile, ErrorsNameTheFile) {
