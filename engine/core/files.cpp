@@ -183,6 +183,15 @@ std::vector<std::string> OutputTransaction::staged() const {
 }
 
 void OutputTransaction::commit() {
+  // An interrupt waits until every file is in place, so a signal never leaves half a commit.
+  sigset_t block, old;
+  sigemptyset(&block);
+  for (int sig : kCleanupSignals) sigaddset(&block, sig);
+  ::pthread_sigmask(SIG_BLOCK, &block, &old);
+  struct Restore {
+    sigset_t mask;
+    ~Restore() { ::pthread_sigmask(SIG_SETMASK, &mask, nullptr); }
+  } restore{old};
   while (!staged_.empty()) {
     const Staged s = staged_.front();
     staged_.erase(staged_.begin());

@@ -94,18 +94,13 @@ FolderLock::FolderLock(const fs::path& dir, const std::string& name) {
   const std::string path = (dir / ".gmg-batch.lock").string();
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw Error(name + ": cannot create the lock file " + path + " (" + std::strerror(errno) + ")");
+  // The file stays empty: the lock is the state, and a refused batch changes nothing.
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    char buffer[32] = {0};
-    const ssize_t n = ::pread(fd_, buffer, sizeof buffer - 1, 0);
-    const std::string pid = n > 0 ? std::string(trim(std::string_view(buffer, static_cast<std::size_t>(n)))) : "";
     ::close(fd_);
     fd_ = -1;
-    throw Error(name + ": another gmg batch" + (pid.empty() ? "" : " (process " + pid + ")") +
-                " is writing into this output folder; wait for it to finish or choose another folder");
-  }
-  const std::string pid = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(fd_, 0) == 0) {
-    [[maybe_unused]] const ssize_t written = ::pwrite(fd_, pid.data(), pid.size(), 0);
+    throw Error(name +
+                ": another gmg batch is writing into this output folder; wait for it to finish or choose "
+                "another folder");
   }
 }
 
