@@ -175,7 +175,8 @@ class TextGridParser {
       number("the xmax of " + what);
       if (tier.cls == "IntervalTier") {
         long n = count("the number of intervals of " + what);
-        tier.intervals.reserve(static_cast<std::size_t>(std::min(n, 1000000L)));
+        // No reserve from the count: intervals are stored as they are read, so a file claiming
+        // 10^8 of them costs only what it holds.
         for (long k = 1; k <= n; ++k) {
           std::string where = "interval " + std::to_string(k) + " of " + what;
           Interval iv;
