@@ -49,7 +49,7 @@ using testing::write_text;
 // The child's peak resident memory must stay under this. gmg on the small fixtures needs about
 // 30 MB; the failures of the issue took 1 to 2.6 GB. Under AddressSanitizer the resident size
 // also counts shadow memory and the quarantine of freed blocks, so the bound is not checked there.
-constexpr long kPeakBoundKb = 200 * 1024;
+constexpr long kPeakBoundKb = 200L * 1024;
 
 struct ChildRun {
   int code = -1;           // exit status; 128 + n when killed by signal n
@@ -68,6 +68,7 @@ ChildRun run_gmg(const std::vector<std::string>& args, const fs::path& cwd, doub
   std::vector<std::string> argv_text = {GMG_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
+  argv.reserve(argv_text.size() + 1);
   for (std::string& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t pid = ::fork();
