@@ -1,5 +1,6 @@
 // Audio files by format: WAV through read_wav, the rest through aubio_source.
 #include "audio/audio_file.h"
+#include "engine/core/files.h"
 
 #include <aubio/aubio.h>
 #include <dlfcn.h>
@@ -12,6 +13,7 @@
 #include <mutex>
 
 #include "engine/core/error.h"
+#include "engine/core/limits.h"
 #include "engine/core/strings.h"
 
 namespace gmg::audio {
@@ -47,6 +49,7 @@ void route_aubio_log() {
 void check_readable(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a file");
+  check_input_file(path);  // a FIFO or a device must not be opened (the open could block)
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
 }
@@ -77,9 +80,14 @@ Audio read_audio(const std::string& path) {
     throw Error(path + ": cannot decode as audio" + (aubio_message.empty() ? "" : " (aubio: " + aubio_message + ")"));
   const uint_t rate = aubio_source_get_samplerate(s.source);
   const uint_t channels = aubio_source_get_channels(s.source);
-  if (rate == 0 || rate > 1000000 || channels == 0)
+  if (rate < static_cast<uint_t>(limits::kMinSampleRate) || rate > static_cast<uint_t>(limits::kMaxSampleRate) ||
+      channels == 0 || channels > 64)
     throw Error(path + ": the decoder reports " + std::to_string(rate) + " Hz and " + std::to_string(channels) +
-                " channels");
+                " channels (gmg reads " + std::to_string(limits::kMinSampleRate) + " to " +
+                std::to_string(limits::kMaxSampleRate) + " Hz, 1 to 64 channels)");
+  // A stream that decodes forever (or for days) is refused once past the longest audio gmg reads,
+  // so time and memory stay bounded.
+  const auto max_samples = static_cast<std::size_t>(limits::kMaxAudioSeconds * rate);
   s.buffer = new_fmat(channels, kHop);
   Audio a;
   a.sample_rate = static_cast<int>(rate);
@@ -95,7 +103,11 @@ Audio read_audio(const std::string& path) {
         throw Error(path + ": sample " + std::to_string(a.samples.size()) + " is not finite after decoding");
       a.samples.push_back(static_cast<float>(sum * inv_channels));
     }
+    if (a.samples.size() > max_samples)
+      throw Error(path + ": the audio lasts longer than the " + format_number(limits::kMaxAudioSeconds / 3600) +
+                  " hours gmg reads");
   }
+  if (a.samples.empty()) throw Error(path + ": holds no audio samples");
   return a;
 }
 

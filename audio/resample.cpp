@@ -10,6 +10,12 @@
 #include "engine/core/math.h"
 
 namespace gmg::audio {
+namespace {
+
+// 192 kHz against a coprime target rate: the WAV reader's highest rate.
+constexpr long long kMaxReducedRate = 192000;
+
+}  // namespace
 
 // Power series; the arguments here are at most the Kaiser beta, 5, where it converges in ~20 terms.
 double bessel_i0(double x) {
@@ -56,6 +62,13 @@ std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int
   // The filter scipy designs: firwin(2 * half_len + 1, 1 / max_rate,
   // ('kaiser', 5.0)) times up.
   const long long max_rate = std::max(up, down);
+  // The filter has 20 taps per unit of the larger reduced rate: rates that share no factor make
+  // it huge (10 MHz to 22050 Hz would need 2 * 10^8 taps), so it is bounded (the WAV reader's
+  // rate limits stay far below).
+  if (max_rate > kMaxReducedRate)
+    throw Error("resample_poly: resampling from " + std::to_string(from_rate) + " Hz to " + std::to_string(to_rate) +
+                " Hz needs a filter of " + std::to_string(20 * max_rate + 1) + " taps (at most " +
+                std::to_string(20 * kMaxReducedRate + 1) + ")");
   const long long half_len = 10 * max_rate;
   const long long taps = 2 * half_len + 1;
   std::vector<double> h = firwin_kaiser(static_cast<int>(taps), 1.0 / static_cast<double>(max_rate), 5.0);

@@ -12,7 +12,8 @@ namespace gmg::audio {
 // lowest terms, window ('kaiser', 5.0), zero padding. Output sample n lies at
 // time n / to_rate (zero phase); the output has ceil(len(x) * up / down)
 // samples. Returns a copy when the rates are equal. Throws gmg::Error when a
-// rate is not positive.
+// rate is not positive or the filter would exceed 3.84 M taps (the larger of
+// the reduced rates above 192000).
 std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate);
 
 // The filter design behind it (exposed for tests).

@@ -19,6 +19,8 @@
 #include "audio/resample.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
 
 namespace gmg::audio {
 
@@ -136,9 +138,12 @@ Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::
   }
   if (f.channels == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 2), "zero channels"));
   if (rate == 0) throw Error(error_at_byte(path, static_cast<long long>(body + 4), "zero sample rate"));
-  if (rate > 0x7FFFFFFFu) {
+  if (rate < static_cast<std::uint32_t>(limits::kMinSampleRate) ||
+      rate > static_cast<std::uint32_t>(limits::kMaxSampleRate)) {
     throw Error(error_at_byte(path, static_cast<long long>(body + 4),
-                              "sample rate " + std::to_string(rate) + " is out of range"));
+                              "sample rate " + std::to_string(rate) + " Hz is outside the " +
+                                  std::to_string(limits::kMinSampleRate) + " to " +
+                                  std::to_string(limits::kMaxSampleRate) + " Hz gmg reads"));
   }
   f.sample_rate = static_cast<int>(rate);
   return f;
@@ -146,9 +151,10 @@ Format parse_fmt(const std::string& path, const Bytes& b, std::size_t pos, std::
 
 }  // namespace
 
-Audio read_wav(const std::string& path) {
-  const std::string file = read_file_bytes(path);
-  const Bytes b(file);
+namespace {
+
+// The RIFF/WAVE magic: "RIFF" <size> "WAVE".
+void check_riff_header(const std::string& path, const Bytes& b) {
   const std::uint64_t file_size = b.size();
   if (file_size == 0) throw Error(error_at_byte(path, 0, "empty file"));
   if (file_size < 12) {
@@ -164,10 +170,20 @@ Audio read_wav(const std::string& path) {
   }
   // The RIFF size field (byte 4) is ignored: writers that stream get it
   // wrong, and every chunk is bounded by the real file size below instead.
+}
 
-  bool have_fmt = false, have_data = false;
+// The fmt chunk and where the data chunk lies.
+struct Chunks {
   Format fmt;
-  std::uint64_t data_body = 0, data_size = 0, data_pos = 0;
+  std::uint64_t data_pos = 0, data_body = 0, data_size = 0;
+};
+
+// Walks the chunks after the RIFF header: the first 'fmt ' and 'data' chunks, each bounded by
+// the real file size.
+Chunks find_chunks(const std::string& path, const Bytes& b) {
+  const std::uint64_t file_size = b.size();
+  bool have_fmt = false, have_data = false;
+  Chunks c;
   // 64-bit positions: a chunk size of 0xFFFFFFFF cannot overflow or loop.
   std::uint64_t pos = 12;
   while (pos + 8 <= file_size) {
@@ -181,7 +197,7 @@ Audio read_wav(const std::string& path) {
                                   "'fmt ' chunk declares " + std::to_string(size) + " bytes but only " +
                                       std::to_string(avail) + " are present"));
       }
-      fmt = parse_fmt(path, b, p, size);
+      c.fmt = parse_fmt(path, b, p, size);
       have_fmt = true;
     } else if (id_is(b, p, "data") && !have_data) {
       if (size > avail) {
@@ -190,9 +206,9 @@ Audio read_wav(const std::string& path) {
                                       std::to_string(avail) + " are present (truncated file or lying header)"));
       }
       have_data = true;
-      data_pos = pos;
-      data_body = body;
-      data_size = size;
+      c.data_pos = pos;
+      c.data_body = body;
+      c.data_size = size;
     } else if (size > avail) {
       // Unknown (or repeated) chunk running past the end. Trailing junk
       // after both needed chunks is tolerated; before them it is an error.
@@ -207,59 +223,69 @@ Audio read_wav(const std::string& path) {
   const long long end = static_cast<long long>(std::min(pos, file_size));
   if (!have_fmt) throw Error(error_at_byte(path, end, "no 'fmt ' chunk in the file"));
   if (!have_data) throw Error(error_at_byte(path, end, "no 'data' chunk in the file"));
+  return c;
+}
 
+// One stored sample at byte p as a double (PCM scaled to [-1, 1), float as stored).
+double sample_at(const Bytes& b, std::size_t p, const Format& fmt) {
+  if (fmt.kind == Format::Kind::kPcm) {
+    switch (fmt.bits) {
+      case 8:
+        return (static_cast<int>(b[p]) - 128) / 128.0;  // 8-bit WAV is unsigned
+      case 16:
+        return static_cast<std::int16_t>(u16_at(b, p)) / 32768.0;
+      case 24: {
+        std::int32_t s = static_cast<std::int32_t>(b[p] | (b[p + 1] << 8) | (b[p + 2] << 16));
+        if (s & 0x800000) s -= 0x1000000;
+        return s / 8388608.0;
+      }
+      default:
+        return static_cast<std::int32_t>(u32_at(b, p)) / 2147483648.0;
+    }
+  }
+  if (fmt.bits == 32) {
+    std::uint32_t u = u32_at(b, p);
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+  }
+  std::uint64_t u = u64_at(b, p);
+  double v;
+  std::memcpy(&v, &u, sizeof v);
+  return v;
+}
+
+// The data chunk's frames, each the mean of its channels.
+Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c) {
+  const Format& fmt = c.fmt;
   const std::uint64_t bytes_per_sample = static_cast<std::uint64_t>(fmt.bits / 8);
   const std::uint64_t frame_bytes = bytes_per_sample * static_cast<std::uint64_t>(fmt.channels);
   // A trailing partial frame (data size not a multiple of the frame size) is
   // ignored, as libsndfile does.
-  const std::uint64_t frames = data_size / frame_bytes;
+  const std::uint64_t frames = c.data_size / frame_bytes;
   if (frames == 0) {
-    throw Error(error_at_byte(path, static_cast<long long>(data_pos),
-                              "'data' chunk holds no samples (" + std::to_string(data_size) + " bytes)"));
+    throw Error(error_at_byte(path, static_cast<long long>(c.data_pos),
+                              "'data' chunk holds no samples (" + std::to_string(c.data_size) + " bytes)"));
   }
-
+  if (static_cast<double>(frames) / fmt.sample_rate > limits::kMaxAudioSeconds) {
+    throw Error(error_at_byte(path, static_cast<long long>(c.data_pos),
+                              std::to_string(frames) + " samples at " + std::to_string(fmt.sample_rate) +
+                                  " Hz last longer than the " + format_number(limits::kMaxAudioSeconds / 3600) +
+                                  " hours gmg reads"));
+  }
   Audio a;
   a.sample_rate = fmt.sample_rate;
   a.samples.resize(static_cast<std::size_t>(frames));
   const double inv_channels = 1.0 / fmt.channels;
-  std::size_t p = static_cast<std::size_t>(data_body);
+  std::size_t p = static_cast<std::size_t>(c.data_body);
   for (std::size_t i = 0; i < a.samples.size(); ++i) {
     double sum = 0.0;
-    for (int c = 0; c < fmt.channels; ++c, p += static_cast<std::size_t>(bytes_per_sample)) {
-      double v = 0.0;
-      if (fmt.kind == Format::Kind::kPcm) {
-        switch (fmt.bits) {
-          case 8:
-            v = (static_cast<int>(b[p]) - 128) / 128.0;
-            break;  // 8-bit WAV is unsigned
-          case 16:
-            v = static_cast<std::int16_t>(u16_at(b, p)) / 32768.0;
-            break;
-          case 24: {
-            std::int32_t s = static_cast<std::int32_t>(b[p] | (b[p + 1] << 8) | (b[p + 2] << 16));
-            if (s & 0x800000) s -= 0x1000000;
-            v = s / 8388608.0;
-            break;
-          }
-          default:
-            v = static_cast<std::int32_t>(u32_at(b, p)) / 2147483648.0;
-            break;
-        }
-      } else {
-        if (fmt.bits == 32) {
-          std::uint32_t u = u32_at(b, p);
-          float f;
-          std::memcpy(&f, &u, sizeof f);
-          v = f;
-        } else {
-          std::uint64_t u = u64_at(b, p);
-          std::memcpy(&v, &u, sizeof v);
-        }
-        if (!std::isfinite(v)) {
-          throw Error(error_at_byte(path, static_cast<long long>(p),
-                                    std::string("sample ") + std::to_string(i) + " (channel " + std::to_string(c) +
-                                        ") is " + (std::isnan(v) ? "NaN" : "infinite")));
-        }
+    for (int ch = 0; ch < fmt.channels; ++ch, p += static_cast<std::size_t>(bytes_per_sample)) {
+      const double v = sample_at(b, p, fmt);
+      if (!std::isfinite(v)) {
+        throw Error(error_at_byte(path, static_cast<long long>(p),
+                                  std::string("sample ") + std::to_string(i) + " (channel " + std::to_string(ch) +
+                                      ") is " + (std::isnan(v) ? "NaN" : "infinite")));
       }
       sum += v;
     }
@@ -267,6 +293,18 @@ Audio read_wav(const std::string& path) {
   }
   return a;
 }
+
+}  // namespace
+
+Audio parse_wav(const std::string& bytes, const std::string& name) {
+  return naming_memory_errors(name, "reading the audio", [&] {
+    const Bytes b(bytes);
+    check_riff_header(name, b);
+    return decode_samples(name, b, find_chunks(name, b));
+  });
+}
+
+Audio read_wav(const std::string& path) { return parse_wav(read_file_bytes(path), path); }
 
 Audio read_wav(const std::string& path, int target_rate) {
   if (target_rate <= 0) throw Error(path + ": target sample rate " + std::to_string(target_rate) + " is not positive");

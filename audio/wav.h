@@ -2,7 +2,7 @@
 //
 // The engine reads speech as mono float samples. read_wav accepts the WAV
 // variants found in the field (PCM 8/16/24/32-bit, IEEE float 32/64,
-// WAVE_FORMAT_EXTENSIBLE, any channel count and sample rate) and rejects
+// WAVE_FORMAT_EXTENSIBLE, any channel count, sample rates of 4 to 192 kHz) and rejects
 // everything else with a gmg::Error naming the file, the byte offset and the
 // problem.
 #pragma once
@@ -30,6 +30,12 @@ struct Audio {
 // read faithfully (see wav.cpp for the list), and the reader's "path: cannot
 // open (reason)" (engine/core/files.h) when the file cannot be read at all.
 Audio read_wav(const std::string& path);
+
+// The same for a file's bytes already in memory; `name` labels errors. The sample rate must lie
+// in engine/core/limits.h's kMinSampleRate..kMaxSampleRate and the audio last at most
+// kMaxAudioSeconds ("x.wav: byte 24: sample rate 1 Hz is outside the 4000 to 192000 Hz gmg
+// reads").
+Audio parse_wav(const std::string& bytes, const std::string& name);
 
 // As above, then resamples to target_rate with resample_poly (audio/resample.h)
 // when the file's rate differs. target_rate must be > 0 (else gmg::Error naming

@@ -8,12 +8,15 @@
 //   u64      FNV-1a hash of the payload
 // A file with another magic or version, a short or over-long payload or a wrong hash is
 // rejected before anything is used.
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
 #include "graph/graph_io.h"
 
 namespace gmg {
@@ -142,9 +145,8 @@ void write_payload(Writer& w, const MotionGraph& g) {
   }
 }
 
-MotionGraph read_payload(Reader& r) {
-  MotionGraph g;
-  GraphParams& p = g.params;
+GraphParams read_params(Reader& r) {
+  GraphParams p;
   p.lambda_pos = r.pod<double>();
   p.lambda_vel = r.pod<double>();
   p.l_cn = r.pod<std::int32_t>();
@@ -153,53 +155,92 @@ MotionGraph read_payload(Reader& r) {
   p.min_onset_strength = r.pod<double>();
   p.break_jump_factor = r.pod<double>();
   p.keywords = r.str();
-
-  Skeleton sk;
-  const std::uint32_t joints = r.pod<std::uint32_t>();
-  if (joints == 0 || joints > 100000) r.fail("implausible joint count");
-  for (std::uint32_t i = 0; i < joints; ++i) {
-    Joint j;
-    j.name = r.str();
-    j.parent = r.pod<std::int32_t>();
-    if (j.parent >= static_cast<int>(i) || (i > 0 && j.parent < 0) || (i == 0 && j.parent != -1))
-      r.fail("joint hierarchy out of order");
-    j.offset = r.pod<glm::dvec3>();
-    for (std::uint8_t c : r.vec<std::uint8_t>()) {
-      if (c > 5) r.fail("unknown channel");
-      j.channels.push_back(static_cast<Channel>(c));
-    }
-    j.rotation_order = rotation_order_from_channels(j.channels);
-    j.has_end_site = r.pod<std::uint8_t>() != 0;
-    j.end_site = r.pod<glm::dvec3>();
-    sk.joints.push_back(j);
+  try {
+    graph_params_validate(p);
+  } catch (const Error& e) {
+    r.fail(std::string("its build parameters are out of range (") + e.what() + ")");
   }
-  g.motion.skeleton = sk;
-  g.motion.fps = r.pod<double>();
-  g.motion.frame_count = r.pod<std::int32_t>();
-  if (!(g.motion.fps > 0) || g.motion.frame_count < 1) r.fail("invalid fps or frame count");
-  g.motion.rotations = r.vec<glm::dquat>();
-  g.motion.translations = r.vec<glm::dvec3>();
-  const std::size_t expected = static_cast<std::size_t>(g.motion.frame_count) * joints;
-  if (g.motion.rotations.size() != expected || g.motion.translations.size() != expected)
-    r.fail("motion size disagrees with frames x joints");
+  return p;
+}
 
-  const std::uint32_t clips = r.pod<std::uint32_t>();
-  int covered = 0;
-  for (std::uint32_t i = 0; i < clips; ++i) {
+Joint read_joint(Reader& r, std::uint32_t i, std::vector<int>& depth) {
+  Joint j;
+  j.name = r.str();
+  j.parent = r.pod<std::int32_t>();
+  if (j.parent >= static_cast<int>(i) || (i > 0 && j.parent < 0) || (i == 0 && j.parent != -1))
+    r.fail("joint hierarchy out of order");
+  depth.push_back(j.parent < 0 ? 1 : depth[static_cast<std::size_t>(j.parent)] + 1);
+  if (depth.back() > limits::kMaxHierarchyDepth) r.fail("joints nested too deep");
+  j.offset = r.pod<glm::dvec3>();
+  bool seen[6] = {false, false, false, false, false, false};
+  for (std::uint8_t c : r.vec<std::uint8_t>()) {
+    if (c > 5 || seen[c]) r.fail("unknown or repeated channel");
+    seen[c] = true;
+    j.channels.push_back(static_cast<Channel>(c));
+  }
+  j.rotation_order = rotation_order_from_channels(j.channels);
+  j.has_end_site = r.pod<std::uint8_t>() != 0;
+  j.end_site = r.pod<glm::dvec3>();
+  if (!std::isfinite(j.offset.x + j.offset.y + j.offset.z + j.end_site.x + j.end_site.y + j.end_site.z))
+    r.fail("a joint offset is not finite");
+  return j;
+}
+
+// The skeleton and the frames; every count within engine/core/limits.h.
+void read_motion(Reader& r, Motion& m) {
+  const std::uint32_t joints = r.pod<std::uint32_t>();
+  if (joints == 0 || joints > static_cast<std::uint32_t>(limits::kMaxJoints)) r.fail("implausible joint count");
+  std::vector<int> depth;
+  for (std::uint32_t i = 0; i < joints; ++i) m.skeleton.joints.push_back(read_joint(r, i, depth));
+  m.fps = r.pod<double>();
+  m.frame_count = r.pod<std::int32_t>();
+  if (!(m.fps >= limits::kMinFps && m.fps <= limits::kMaxFps))
+    r.fail("frame rate " + format_number(m.fps) + " is outside " + format_number(limits::kMinFps) + " to " +
+           format_number(limits::kMaxFps) + " fps");
+  if (m.frame_count < 1 || m.frame_count > limits::kMaxFrames) r.fail("invalid frame count");
+  m.rotations = r.vec<glm::dquat>();
+  m.translations = r.vec<glm::dvec3>();
+  const std::size_t expected = static_cast<std::size_t>(m.frame_count) * joints;
+  if (m.rotations.size() != expected || m.translations.size() != expected)
+    r.fail("motion size disagrees with frames x joints");
+  for (std::size_t k = 0; k < expected; ++k) {
+    const glm::dquat& q = m.rotations[k];
+    const glm::dvec3& t = m.translations[k];
+    if (!std::isfinite(q.w + q.x + q.y + q.z + t.x + t.y + t.z) || std::abs(glm::dot(q, q) - 1.0) > 1e-6)
+      r.fail("frame " + std::to_string(k / joints) + " holds a value that is not finite or not a unit rotation");
+  }
+}
+
+// The clip table: contiguous clips covering every frame (summed in 64 bits, so counts near
+// 2^31 cannot wrap).
+std::vector<ClipInfo> read_clips(Reader& r, int frame_count) {
+  std::vector<ClipInfo> clips;
+  const std::uint32_t count = r.pod<std::uint32_t>();
+  long long covered = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
     ClipInfo c;
     c.name = r.str();
     c.first_frame = r.pod<std::int32_t>();
     c.frame_count = r.pod<std::int32_t>();
-    if (c.first_frame != covered || c.frame_count < 1) r.fail("clip table inconsistent");
+    if (c.first_frame != covered || c.frame_count < 1 || covered + c.frame_count > frame_count)
+      r.fail("clip table inconsistent");
     covered += c.frame_count;
-    g.clips.push_back(c);
+    clips.push_back(c);
   }
-  if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
-  g.graph = GraphStorage(static_cast<std::size_t>(g.motion.frame_count));
-  for (int f = 0; f < g.motion.frame_count; ++f) {
+  if (covered != frame_count) r.fail("clips do not cover the motion");
+  return clips;
+}
+
+void read_nodes_and_edges(Reader& r, MotionGraph& g) {
+  const int frames = g.motion.frame_count;
+  g.graph = GraphStorage(static_cast<std::size_t>(frames));
+  for (int f = 0; f < frames; ++f) {
     NodeInfo& n = g.graph[static_cast<std::size_t>(f)];
     n.kinds = r.pod<std::uint8_t>();
     n.keyword = r.str();
+    if ((n.kinds & ~(kOnsetNode | kKeywordNode | kBreakNode)) != 0 ||
+        ((n.kinds & kKeywordNode) != 0) != !n.keyword.empty())
+      r.fail("node " + std::to_string(f) + " has unknown kinds or a keyword without its kind");
   }
   const std::uint64_t edges = r.pod<std::uint64_t>();
   for (std::uint64_t e = 0; e < edges; ++e) {
@@ -207,9 +248,18 @@ MotionGraph read_payload(Reader& r) {
     const int b = r.pod<std::int32_t>();
     const double w = r.pod<double>();
     const bool natural = r.pod<std::uint8_t>() != 0;
-    if (a < 0 || b < 0 || a >= g.motion.frame_count || b >= g.motion.frame_count) r.fail("edge outside the graph");
+    if (a < 0 || b < 0 || a >= frames || b >= frames) r.fail("edge outside the graph");
+    if (!std::isfinite(w) || w < 0 || (natural && (b != a + 1 || w != 0))) r.fail("edge with an invalid weight");
     boost::add_edge(static_cast<std::size_t>(a), static_cast<std::size_t>(b), EdgeInfo{w, natural}, g.graph);
   }
+}
+
+MotionGraph read_payload(Reader& r) {
+  MotionGraph g;
+  g.params = read_params(r);
+  read_motion(r, g.motion);
+  g.clips = read_clips(r, g.motion.frame_count);
+  read_nodes_and_edges(r, g);
   if (!r.done()) r.fail("trailing bytes after the edges");
   return g;
 }
@@ -235,8 +285,7 @@ void graph_save(const std::string& path, const MotionGraph& g) {
       true);
 }
 
-MotionGraph graph_load(const std::string& path) {
-  const std::string bytes = read_file_bytes(path);
+MotionGraph graph_parse(const std::string& bytes, const std::string& path) {
   constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
     throw Error(path + ": not a gmg graph file (build one with 'gmg build')");
@@ -257,7 +306,9 @@ MotionGraph graph_load(const std::string& path) {
   if (hash != fnv1a(bytes.data() + kHeader, static_cast<std::size_t>(size)))
     throw Error(path + ": graph file is damaged (checksum mismatch)");
   Reader r(bytes.data() + kHeader, static_cast<std::size_t>(size), path);
-  return read_payload(r);
+  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r); });
 }
+
+MotionGraph graph_load(const std::string& path) { return graph_parse(read_file_bytes(path), path); }
 
 }  // namespace gmg

@@ -11,8 +11,13 @@ namespace gmg {
 void graph_save(const std::string& path, const MotionGraph& g);
 
 // Rejects a file of another format or version, a truncated or damaged one, with a gmg::Error
-// naming it.
+// naming it. A file with a valid checksum is still checked field by field (it may have been
+// made by hand): counts within engine/core/limits.h (joints, depth, frames, fps 1 to 1000),
+// finite unit rotations, clips that cover the frames exactly, valid nodes and edges.
 MotionGraph graph_load(const std::string& path);
+
+// The same for a file's bytes already in memory; `path` labels errors.
+MotionGraph graph_parse(const std::string& bytes, const std::string& path);
 
 // GraphViz DOT and GraphML (Boost's writers) of frames [from, to) (graph_export.cpp). Throws
 // gmg::Error when the range is outside the graph or the file cannot be written.

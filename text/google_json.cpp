@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
 #include "text/text_file.h"
@@ -60,9 +61,11 @@ const json* find_either(const json& obj, const char* a, const char* b) {
 
 }  // namespace
 
-std::vector<Word> read_google_json(const std::string& path) {
+std::vector<Word> read_google_json(const std::string& path) { return parse_google_json(read_file_bytes(path), path); }
+
+std::vector<Word> parse_google_json(const std::string& bytes, const std::string& path) {
   // Decoded first (a UTF-16 export is still JSON), then parsed with the engine's JSON errors.
-  const json doc = parse_json_text(detail::read_text_file(path), path);
+  const json doc = parse_json_text(detail::decode_to_utf8(bytes, path), path);
 
   const json* results = nullptr;
   std::string base;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
@@ -174,7 +175,8 @@ class TextGridParser {
       number("the xmax of " + what);
       if (tier.cls == "IntervalTier") {
         long n = count("the number of intervals of " + what);
-        tier.intervals.reserve(static_cast<std::size_t>(std::min(n, 1000000L)));
+        // No reserve from the count: intervals are stored as they are read, so a file claiming
+        // 10^8 of them costs only what it holds.
         for (long k = 1; k <= n; ++k) {
           std::string where = "interval " + std::to_string(k) + " of " + what;
           Interval iv;
@@ -313,7 +315,11 @@ const Tier* default_tier(const std::vector<Tier>& tiers, const std::string& path
 }  // namespace
 
 std::vector<Word> read_textgrid(const std::string& path, const std::string& tier) {
-  const std::string text = detail::read_text_file(path);
+  return parse_textgrid(read_file_bytes(path), path, tier);
+}
+
+std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& path, const std::string& tier) {
+  const std::string text = detail::decode_to_utf8(bytes, path);
   std::vector<Tier> tiers = TextGridParser(text, path).parse();
   const Tier* chosen = tier.empty() ? default_tier(tiers, path) : named_tier(tiers, tier, path);
   if (chosen->cls != "IntervalTier")

@@ -94,6 +94,13 @@ std::vector<Word> read_whisper_json(const std::string& path);
 // "segments" or "word_segments", else Google speech JSON.
 std::vector<Word> read_json_transcript(const std::string& path);
 
+// The readers for a file's bytes already in memory (what read_tsv, read_textgrid,
+// read_google_json and read_json_transcript do after reading the file); `name` labels errors.
+std::vector<Word> parse_tsv(const std::string& bytes, const std::string& name);
+std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& name, const std::string& tier = "");
+std::vector<Word> parse_google_json(const std::string& bytes, const std::string& name);
+std::vector<Word> parse_json_transcript(const std::string& bytes, const std::string& name);
+
 // Throws gmg::Error naming `path` when some word ends after duration_s + tolerance_s, i.e. the
 // transcript runs past the end of the audio (usually a transcript of another recording).
 void check_transcript_fits(const std::vector<Word>& words, double duration_s, const std::string& path,

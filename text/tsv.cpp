@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
@@ -44,8 +45,10 @@ std::vector<std::string_view> split_on_blanks(std::string_view s) {
 
 }  // namespace
 
-std::vector<Word> read_tsv(const std::string& path) {
-  const std::vector<std::string> lines = split_lines(detail::read_text_file(path));
+std::vector<Word> read_tsv(const std::string& path) { return parse_tsv(read_file_bytes(path), path); }
+
+std::vector<Word> parse_tsv(const std::string& bytes, const std::string& path) {
+  const std::vector<std::string> lines = split_lines(detail::decode_to_utf8(bytes, path));
   std::vector<Word> words;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const long line = static_cast<long>(i + 1);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
 #include "text/text_file.h"
@@ -149,9 +150,13 @@ std::vector<Word> read_whisper_json(const std::string& path) {
 }
 
 std::vector<Word> read_json_transcript(const std::string& path) {
-  const json doc = parse_json_text(detail::read_text_file(path), path);
-  if (is_whisper(doc)) return whisper_words(doc, path);
-  return read_google_json(path);  // reads the file again: transcripts are small
+  return parse_json_transcript(read_file_bytes(path), path);
+}
+
+std::vector<Word> parse_json_transcript(const std::string& bytes, const std::string& name) {
+  const json doc = parse_json_text(detail::decode_to_utf8(bytes, name), name);
+  if (is_whisper(doc)) return whisper_words(doc, name);
+  return parse_google_json(bytes, name);  // parses again: transcripts are small
 }
 
 }  // namespace gmg::text

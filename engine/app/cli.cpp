@@ -1,12 +1,15 @@
 #include "engine/app/cli.h"
 
 #include <iostream>
+#include <new>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 #include "engine/app/batch/batch.h"
 #include "engine/app/cli_common.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace gmg {
 
@@ -50,6 +53,14 @@ int cli_main(int argc, char** argv) {
     for (CLI::Option* o : sub->get_options())
       if (o->get_default_str() == "[]") o->default_str("");
 
+  // Every subcommand: an interrupt removes the temporary files of outputs being written (batch adds
+  // its own graceful first-signal handling on top).
+  const InterruptCleanup interrupt_cleanup;
+  // Which subcommand ran, for the one error that cannot name a file.
+  auto command = [&app] {
+    const auto subs = app.get_subcommands();
+    return subs.empty() ? std::string() : subs.front()->get_name() + ": ";
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -63,7 +74,10 @@ int cli_main(int argc, char** argv) {
     std::cerr << "gmg: error: " << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
-    std::cerr << "gmg: error: out of memory\n";
+    std::cerr << "gmg: error: " << command() << "out of memory\n";
+    return 1;
+  } catch (const std::length_error& e) {
+    std::cerr << "gmg: error: " << command() << "out of memory (" << e.what() << ")\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "gmg: error: " << e.what() << "\n";

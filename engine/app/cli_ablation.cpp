@@ -22,8 +22,12 @@ void run_ablation(AblationArgs& a) {
   a.options.seeds.clear();
   for (int i = 0; i < a.seeds; ++i) a.options.seeds.push_back(static_cast<std::uint64_t>(i + 1));
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
-  const AblationResult result =
-      ablation_run({a.motion, a.audio, transcript_or_none(a.transcript)}, a.options, a.config.make());
+  const Config cfg = a.config.make();
+  std::vector<NamedFile> inputs = {
+      {"--motion", a.motion}, {"--audio", a.audio}, {"--transcript", transcript_or_none(a.transcript)}};
+  for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
+  check_outputs_apart({{"--csv", a.csv}}, inputs);
+  const AblationResult result = ablation_run({a.motion, a.audio, transcript_or_none(a.transcript)}, a.options, cfg);
   std::cout << ablation_markdown(result);
   if (!a.csv.empty()) {
     const std::string csv = ablation_csv(result);

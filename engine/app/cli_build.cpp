@@ -7,6 +7,7 @@
 #include "engine/app/cli_common.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
 
@@ -26,6 +27,11 @@ void run_build(const BuildArgs& a) {
   if (!a.transcript.empty() && a.transcript.size() != a.motion.size())
     throw UsageError("build: give one --transcript per clip (write '--transcript none' for a clip without one)");
   const Config cfg = a.config.make();
+  std::vector<NamedFile> inputs = config_input_files(a.config, cfg);
+  for (const std::string& m : a.motion) inputs.push_back({"--motion", m});
+  for (const std::string& w : a.audio) inputs.push_back({"--audio", w});
+  for (const std::string& t : a.transcript) inputs.push_back({"--transcript", transcript_or_none(t)});
+  check_outputs_apart({{"-o", a.output}}, inputs);
   std::vector<ReferenceFiles> clips;
   for (std::size_t i = 0; i < a.motion.size(); ++i)
     clips.push_back({a.motion[i],

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "engine/core/files.h"
+#include "engine/core/json.h"
 
 namespace gmg {
 
@@ -20,10 +21,14 @@ Config ConfigOptions::make() const {
   return c;
 }
 
+std::vector<NamedFile> config_input_files(const ConfigOptions& options, const Config& config) {
+  return {{"--config", options.file}, {"keywords=", config.graph.keywords}};
+}
+
 std::string transcript_or_none(const std::string& t) { return t == "none" ? std::string() : t; }
 
 void write_json_file(const std::string& path, const nlohmann::ordered_json& j) {
-  const std::string text = j.dump(2) + "\n";
+  const std::string text = json_dump(j, 2) + "\n";
   write_file_atomically(path, [&](std::ostream& os) { os << text; });
 }
 

@@ -19,6 +19,7 @@
 
 #include "engine/app/config.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace CLI {
 class App;
@@ -45,10 +46,15 @@ struct ConfigOptions {
   Config make() const;
 };
 
+// The files a config reads, for check_outputs_apart: the --config file and the keyword lexicon
+// (keywords=FILE).
+std::vector<NamedFile> config_input_files(const ConfigOptions& options, const Config& config);
+
 // "none" means the clip has no transcript (so a transcript can be left out inside a list).
 std::string transcript_or_none(const std::string& t);
 
-// Writes j indented by 2 with a final newline, atomically.
+// Writes j indented by 2 with a final newline, atomically (json_dump: invalid UTF-8 in a string,
+// e.g. a Latin-1 file name, is replaced, never thrown on).
 void write_json_file(const std::string& path, const nlohmann::ordered_json& j);
 
 void add_build_command(CLI::App& app);

@@ -6,6 +6,8 @@
 
 #include "engine/app/cli_common.h"
 #include "engine/app/evaluate_files.h"
+#include "engine/core/files.h"
+#include "engine/core/json.h"
 
 namespace gmg {
 namespace {
@@ -20,10 +22,18 @@ struct EvaluateArgs {
 
 void run_evaluate(EvaluateArgs& a) {
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
-  const EvaluateResult r = evaluate_files(a.inputs, a.options);
-  for (const std::string& w : r.warnings) std::cerr << "gmg: warning: " << w << "\n";
+  const EvaluateInputs& in = a.inputs;
+  check_outputs_apart({{"-o", a.output}, {"--plot", in.plot}}, {{"--generated", in.generated},
+                                                                {"--truth", in.truth},
+                                                                {"--audio", in.audio},
+                                                                {"--report", in.report},
+                                                                {"--reference", in.reference}});
+  OutputTransaction outputs;  // the plot and the JSON, both or neither
+  const EvaluateResult r = evaluate_files(in, a.options);
   if (!a.output.empty()) write_json_file(a.output, r.json);
-  std::cout << (a.json ? r.json.dump() : r.json.dump(2)) << "\n";
+  outputs.commit();
+  for (const std::string& w : r.warnings) std::cerr << "gmg: warning: " << w << "\n";
+  std::cout << json_dump(r.json, a.json ? -1 : 2) << "\n";
 }
 
 }  // namespace

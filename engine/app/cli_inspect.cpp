@@ -8,6 +8,8 @@
 
 #include "engine/app/cli_common.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/json.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
 
@@ -59,14 +61,16 @@ std::vector<Count> counts(const MotionGraph& g) {
 }
 
 void run_inspect(const InspectArgs& a) {
+  check_outputs_apart({{"--dot", a.dot}, {"--graphml", a.graphml}}, {{"graph", a.graph}});
+  OutputTransaction outputs;
   const MotionGraph g = graph_load(a.graph);
   const std::vector<Count> c = counts(g);
   if (a.json) {
     nlohmann::ordered_json j;
     for (const Count& k : c) j[k.key] = k.value;
-    std::cout << j.dump() << "\n";
+    std::cout << json_dump(j, -1) << "\n";
   } else {
-    for (const Count& k : c) std::cout << k.label << ": " << k.value.dump() << "\n";
+    for (const Count& k : c) std::cout << k.label << ": " << json_dump(k.value, -1) << "\n";
     for (const ClipInfo& clip : g.clips)
       std::cout << "clip: " << clip.name << " (frames " << clip.first_frame << ".."
                 << clip.first_frame + clip.frame_count - 1 << ")\n";
@@ -74,6 +78,7 @@ void run_inspect(const InspectArgs& a) {
   const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);
   if (!a.graphml.empty()) graph_write_graphml(a.graphml, g, from, to);
+  outputs.commit();
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "engine/app/cli_common.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/motion/motion_file.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
@@ -24,6 +25,15 @@ void run_reenact(const ReenactArgs& a) {
   if (a.graph.empty() == a.ref_motion.empty())
     throw UsageError("reenact: give either --graph or --reference-motion with --reference-audio");
   const Config cfg = a.config.make();
+  std::vector<NamedFile> inputs = {{"--graph", a.graph},
+                                   {"--reference-motion", a.ref_motion},
+                                   {"--reference-audio", a.ref_audio},
+                                   {"--reference-transcript", transcript_or_none(a.ref_transcript)},
+                                   {"--audio", a.audio},
+                                   {"--transcript", transcript_or_none(a.transcript)}};
+  for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
+  check_outputs_apart({{"-o", a.output}, {"--report", a.report}}, inputs);
+  OutputTransaction outputs;  // the BVH and the report, both or neither
   MotionGraph g;
   std::string graph_name = a.graph;
   if (!a.graph.empty()) {
@@ -41,6 +51,7 @@ void run_reenact(const ReenactArgs& a) {
       g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier}, cfg, graph_name);
   motion_write(a.output, r.motion);
   if (!a.report.empty()) write_json_file(a.report, r.report);
+  outputs.commit();
   const auto& t = r.report["totals"];
   std::cout << "wrote " << a.output << ": " << r.motion.frame_count << " frames, " << t["subsequences"]
             << " subsequences, " << t["accepted"] << " accepted, fallbacks " << t["fallbacks"].dump() << ", failures "

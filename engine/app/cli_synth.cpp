@@ -7,6 +7,8 @@
 
 #include "engine/app/cli_common.h"
 #include "engine/app/synth/synth.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace gmg {
 namespace {
@@ -18,9 +20,13 @@ struct SynthArgs {
 };
 
 void run_synth(const SynthArgs& a) {
+  if (a.stem.empty() || a.stem.find('/') != std::string::npos || a.stem == "." || a.stem == "..")
+    throw Error("synth: --stem '" + a.stem + "' is not a plain file name (the files go into -o " + a.dir + ")");
   const SynthClip clip = synth_speaker(a.spec);
+  OutputTransaction outputs;  // the three files, all or none
   synth_write(clip, a.dir, a.stem);
-  if (a.no_motion) std::filesystem::remove(std::filesystem::path(a.dir) / (a.stem + ".bvh"));
+  if (a.no_motion) outputs.discard((std::filesystem::path(a.dir) / (a.stem + ".bvh")).string());
+  outputs.commit();
   std::cout << "wrote " << a.dir << "/" << a.stem << (a.no_motion ? ".{wav,tsv}" : ".{bvh,wav,tsv}") << ": "
             << a.spec.duration_s << " s, " << clip.words.size() << " words\n";
 }

@@ -4,6 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <sstream>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -23,11 +26,19 @@ double parse_double(const std::string& key, const std::string& v) {
   return out;
 }
 
-long long parse_int(const std::string& key, const std::string& v) {
-  long long out = 0;
+// A whole number within [lo, hi]: "config key 'l_npaths': 1000000000 is out of range (1 to 1000)".
+template <typename T>
+T parse_whole(const std::string& key, const std::string& v, T lo, T hi) {
+  T out = 0;
   const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
-  if (r.ec != std::errc() || r.ptr != v.data() + v.size())
+  if (r.ptr != v.data() + v.size() || (r.ec != std::errc() && r.ec != std::errc::result_out_of_range)) {
+    if (std::is_unsigned<T>::value && !v.empty() && v[0] == '-')
+      throw Error("config key '" + key + "': must not be negative");
     throw Error("config key '" + key + "': '" + v + "' is not a whole number");
+  }
+  if (r.ec == std::errc::result_out_of_range || out < lo || out > hi)
+    throw Error("config key '" + key + "': " + v + " is out of range (" + std::to_string(lo) + " to " +
+                std::to_string(hi) + ")");
   return out;
 }
 
@@ -48,21 +59,39 @@ struct Accessor {
   bool whole = false;  // the value is a whole number (a JSON 4.0 is read as 4)
 };
 
+// The text of a number key's range, added to its help ("[1 to 1000]").
+template <typename T>
+std::string range_text(T lo, T hi) {
+  return " [" + format_number(static_cast<double>(lo)) + " to " + format_number(static_cast<double>(hi)) + "]";
+}
+
 template <typename T>
 Accessor number_key(const char* name, const char* help, T Config::*group, double(T::*field)) {
   return {{name, help},
           [=](Config& c, const std::string& v) { (c.*group).*field = parse_double(name, v); },
           [=](const Config& c) { return format_double((c.*group).*field); }};
 }
+// A number key with a bound the stage's own validation does not set (a huge value would make
+// the engine loop or overflow).
 template <typename T>
-Accessor int_key(const char* name, const char* help, T Config::*group, int(T::*field)) {
-  return {{name, help},
+Accessor bounded_number_key(const char* name, const char* help, T Config::*group, double(T::*field), double lo,
+                            double hi) {
+  return {{name, help + range_text(lo, hi)},
           [=](Config& c, const std::string& v) {
-            const long long x = parse_int(name, v);
-            if (x < -1000000000LL || x > 1000000000LL)
-              throw Error(std::string("config key '") + name + "': out of range");
-            (c.*group).*field = static_cast<int>(x);
+            const double x = parse_double(name, v);
+            if (x < lo || x > hi)
+              throw Error(std::string("config key '") + name + "': " + v + " is out of range (" + format_number(lo) +
+                          " to " + format_number(hi) + ")");
+            (c.*group).*field = x;
           },
+          [=](const Config& c) { return format_double((c.*group).*field); }};
+}
+// Every whole-number key has a range, in its help: values beyond it would only cost time or
+// memory (a beam of 10^9 paths), never help.
+template <typename T>
+Accessor int_key(const char* name, const char* help, T Config::*group, int(T::*field), int lo, int hi) {
+  return {{name, help + range_text(lo, hi)},
+          [=](Config& c, const std::string& v) { (c.*group).*field = parse_whole<int>(name, v, lo, hi); },
           [=](const Config& c) { return std::to_string((c.*group).*field); },
           true};
 }
@@ -97,8 +126,10 @@ const std::vector<Accessor>& accessors() {
                  &GraphParams::lambda_pos),
       number_key("lambda_vel", "weight of joint velocities in the pose distance", &Config::graph,
                  &GraphParams::lambda_vel),
-      int_key("l_cn", "frames after l averaged for l's continuity threshold", &Config::graph, &GraphParams::l_cn),
-      int_key("l_pn", "pruning neighbourhood in frames (weak pruning: 1)", &Config::graph, &GraphParams::l_pn),
+      int_key("l_cn", "frames after l averaged for l's continuity threshold", &Config::graph, &GraphParams::l_cn, 1,
+              300),
+      int_key("l_pn", "pruning neighbourhood in frames (weak pruning: 1)", &Config::graph, &GraphParams::l_pn, 1,
+              10000),
       bool_key("exclude_near", "never add a transition to a frame within l_pn (false: paper-literal)", &Config::graph,
                &GraphParams::exclude_near),
       number_key("min_onset_strength", "raw onset strength a peak needs (weak detection: 0)", &Config::graph,
@@ -107,11 +138,11 @@ const std::vector<Accessor>& accessors() {
                  &Config::graph, &GraphParams::break_jump_factor),
       string_key("keywords", "keyword lexicon file (empty: assets/keywords.txt)", &Config::graph,
                  &GraphParams::keywords),
-      int_key("l_npaths", "beam width and number of start nodes", &Config::search, &SearchParams::l_npaths),
+      int_key("l_npaths", "beam width and number of start nodes", &Config::search, &SearchParams::l_npaths, 1, 1000),
       number_key("lambda_w", "weight of edge weights in the path cost", &Config::search, &SearchParams::lambda_w),
       number_key("lambda_len", "weight of the length mismatch in the path cost", &Config::search,
                  &SearchParams::lambda_len),
-      int_key("l_feat", "key-node feature length", &Config::search, &SearchParams::l_feat),
+      int_key("l_feat", "key-node feature length", &Config::search, &SearchParams::l_feat, 1, 1000),
       number_key("lambda_full", "weight of the whole feature distance", &Config::search, &SearchParams::lambda_full),
       number_key("lambda_first", "weight of the first-length ratio", &Config::search, &SearchParams::lambda_first),
       number_key("lambda_occ", "weight of how often a start node was used", &Config::search, &SearchParams::lambda_occ),
@@ -125,9 +156,10 @@ const std::vector<Accessor>& accessors() {
          for (double w : c.search.w_full) s += (s.empty() ? "" : ",") + format_double(w);
          return s;
        }},
-      int_key("retries", "retries with new start nodes before a fallback", &Config::search, &SearchParams::retries),
-      number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search,
-                 &SearchParams::max_length_factor),
+      int_key("retries", "retries with new start nodes before a fallback", &Config::search, &SearchParams::retries, 0,
+              100),
+      bounded_number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search,
+                         &SearchParams::max_length_factor, 1.1, 100),
       bool_key("fallbacks", "use the termination fallbacks (false: count failures)", &Config::search,
                &SearchParams::fallbacks),
       enum_key("planner",
@@ -142,14 +174,14 @@ const std::vector<Accessor>& accessors() {
       number_key("continue_max", "longest natural continuation taken, times l_sub (natural planner)", &Config::search,
                  &SearchParams::continue_max),
       int_key("merge_below", "subsequences shorter than this many frames merge into the next (natural planner)",
-              &Config::search, &SearchParams::merge_below),
+              &Config::search, &SearchParams::merge_below, 0, 1000),
       number_key("variety", "draw among accepted paths within this cost of the best (natural planner)", &Config::search,
                  &SearchParams::variety),
       enum_key("init", "start nodes: feature or random (weak initialisation)", &Config::search, &SearchParams::init,
                kInitModeNames),
       int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search,
-              &SearchParams::ignore_rounds),
-      int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend),
+              &SearchParams::ignore_rounds, 1, 100),
+      int_key("l_blend", "frames blended on each side of a junction", &Config::blend, &BlendParams::l_blend, 0, 1000),
       enum_key("blend_curve", "blend weights: linear or sigmoid", &Config::blend, &BlendParams::curve,
                kBlendCurveNames),
       enum_key("blend_mode",
@@ -171,13 +203,11 @@ const std::vector<Accessor>& accessors() {
          return s;
        }},
       int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup,
-              &CleanupParams::smooth_window),
-      int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order),
-      {{"seed", "seed of every random choice"},
+              &CleanupParams::smooth_window, 3, 255),
+      int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order, 0, 15),
+      {{"seed", "seed of every random choice [0 to 18446744073709551615]"},
        [](Config& c, const std::string& v) {
-         const long long x = parse_int("seed", v);
-         if (x < 0) throw Error("config key 'seed': must not be negative");
-         c.seed = static_cast<std::uint64_t>(x);
+         c.seed = parse_whole<std::uint64_t>("seed", v, 0, std::numeric_limits<std::uint64_t>::max());
        },
        [](const Config& c) { return std::to_string(c.seed); },
        true},
@@ -224,7 +254,7 @@ std::string json_value_text(const std::string& key, const nlohmann::json& v) {
   if (v.is_array()) {
     std::string text;
     for (const auto& item : v)
-      text += (text.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>() : item.dump());
+      text += (text.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>() : json_dump(item, -1));
     return text;
   }
   if (v.is_number_float()) {
@@ -234,13 +264,17 @@ std::string json_value_text(const std::string& key, const nlohmann::json& v) {
     if (whole_key && std::trunc(d) == d && std::abs(d) < 9007199254740992.0)  // 2^53: every integer exact
       return std::to_string(static_cast<long long>(d));
   }
-  return v.dump();
+  return json_dump(v, -1);
 }
 
 }  // namespace
 
 void config_load_file(Config& config, const std::string& path) {
-  const nlohmann::json j = read_json_file(path);
+  config_load_text(config, read_file_bytes(path), path);
+}
+
+void config_load_text(Config& config, const std::string& text, const std::string& path) {
+  const nlohmann::json j = parse_json_text(text, path);
   if (!j.is_object()) throw Error(path + ": a config file must be a JSON object of \"key\": value");
   for (auto it = j.begin(); it != j.end(); ++it) {
     try {
@@ -272,7 +306,7 @@ std::string config_to_json(const Config& config) {
         j[a.key.name] = v;
     }
   }
-  return j.dump(2);
+  return json_dump(j, 2);
 }
 
 Config config_from(const std::string& file, const std::vector<std::string>& assignments) {

@@ -4,6 +4,12 @@
 // choices, explained beside each field. Every field can be set from a JSON config file
 // (`--config FILE`, an object of "key": value) or the command line (`--set key=value`), by the
 // key named in config_keys(). `gmg config` prints them all.
+//
+// Every whole-number key has a range, shown in its help (`gmg config --keys`) and enforced when
+// it is set: l_cn 1-300, l_pn 1-10000, l_npaths 1-1000, l_feat 1-1000, retries 0-100,
+// ignore_rounds 1-100, l_blend 0-1000, smooth_window 3-255, smooth_order 0-15, seed any 64-bit
+// unsigned value; and max_length_factor lies in 1.1-100. Values beyond these only cost time or
+// memory (a beam of 10^9 paths) and never help.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +52,9 @@ std::string config_get(const Config& config, const std::string& key);
 
 // Reads a JSON object of key: value pairs into config. Errors name the file.
 void config_load_file(Config& config, const std::string& path);
+
+// The same for JSON text already in memory; `name` labels errors.
+void config_load_text(Config& config, const std::string& text, const std::string& name);
 
 // The config as a JSON object text (every key).
 std::string config_to_json(const Config& config);

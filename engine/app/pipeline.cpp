@@ -12,6 +12,8 @@
 #include "engine/assemble/resample.h"
 #include "engine/assemble/transitions.h"
 #include "engine/core/error.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/motion/cleanup.h"
 #include "engine/motion/motion_file.h"
@@ -27,6 +29,9 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
                            double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
   SpeechEvents ev;
   ev.duration_s = sound.duration();
+  if (frame_count < 0 && !(ev.duration_s * fps <= limits::kMaxFrames))
+    throw Error(name + ": " + format_number(ev.duration_s) + " s of speech at " + format_number(fps) +
+                " fps is more than the " + std::to_string(limits::kMaxFrames) + " frames gmg makes");
   ev.total_frames = frame_count >= 0 ? frame_count : static_cast<int>(std::lround(ev.duration_s * fps));
   if (ev.total_frames < 1) throw Error(name + ": audio is shorter than one motion frame");
 
@@ -58,17 +63,31 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs;
   for (const ReferenceFiles& c : clips) {
-    ClipEvents in;
-    in.name = c.motion;
-    in.motion = motion_read(c.motion, c.skeleton);
-    motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
-                           config.cleanup.smooth_order, c.motion);
-    const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
-    in.onset_frames = ev.onset_frames;
-    in.keyword_frames = ev.keyword_frames;
-    inputs.push_back(std::move(in));
+    naming_memory_errors(c.motion, "reading the reference clip", [&] {
+      ClipEvents in;
+      in.name = c.motion;
+      in.motion = motion_read(c.motion, c.skeleton);
+      motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
+                             config.cleanup.smooth_order, c.motion);
+      const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
+      in.onset_frames = ev.onset_frames;
+      in.keyword_frames = ev.keyword_frames;
+      inputs.push_back(std::move(in));
+    });
   }
-  return graph_build(std::move(inputs), config.graph);
+  const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
+  return naming_memory_errors(what, "building the graph", [&] { return graph_build(std::move(inputs), config.graph); });
+}
+
+void check_output_size(int frames, const Skeleton& skeleton, const std::string& name) {
+  const std::uint64_t bytes = static_cast<std::uint64_t>(frames) *
+                              static_cast<std::uint64_t>(std::max(1, skeleton.channel_count())) *
+                              limits::kBvhBytesPerValue;
+  if (frames > limits::kMaxOutputFrames || bytes > limits::kMaxOutputBytes)
+    throw Error(name + ": the output would have " + std::to_string(frames) + " frames of " +
+                std::to_string(skeleton.channel_count()) + " channels (about " + std::to_string(bytes >> 20) +
+                " MB of BVH); gmg writes at most " + std::to_string(limits::kMaxOutputFrames) + " frames and " +
+                std::to_string(limits::kMaxOutputBytes >> 30) + " GB");
 }
 
 BlendParams assembly_params(const Config& config) {
@@ -113,7 +132,8 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
                     const std::string& graph_name) {
   const text::Lexicon lexicon = lexicon_for(config.graph);
   const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
-  Reenactment r = reenact_events(g, events, config);
+  check_output_size(events.total_frames, g.motion.skeleton, speech.audio);
+  Reenactment r = naming_memory_errors(speech.audio, "reenacting", [&] { return reenact_events(g, events, config); });
   nlohmann::ordered_json inputs = {
       {"graph", graph_name},
       {"audio", speech.audio},

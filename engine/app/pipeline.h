@@ -66,6 +66,11 @@ struct Reenactment {
   nlohmann::ordered_json report;
 };
 
+// Throws gmg::Error naming `name` (the speech) when a motion of `frames` frames in `skeleton`
+// would exceed what gmg writes (engine/core/limits.h: kMaxOutputFrames frames, kMaxOutputBytes
+// of BVH text). reenact checks it before any search.
+void check_output_size(int frames, const Skeleton& skeleton, const std::string& name);
+
 // Reenacts the speech: segmentation, planning, resampling, blending. Deterministic for a given
 // graph, speech, config (including config.seed). `graph_name` only labels the report.
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,

@@ -1,5 +1,7 @@
 #include "engine/app/report.h"
 
+#include "engine/core/json.h"
+
 namespace gmg {
 namespace {
 
@@ -24,7 +26,7 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
   rep["fps"] = fps;
   rep["duration_s"] = events.duration_s;
   rep["seed"] = config.seed;
-  rep["parameters"] = nlohmann::ordered_json::parse(config_to_json(config));
+  rep["parameters"] = parse_ordered_json_text(config_to_json(config), "the config");
   rep["test_events"] = {
       {"onsets", events.onset_frames.size()}, {"keywords", events.keyword_frames.size()}, {"words", events.words}};
   nlohmann::ordered_json list = nlohmann::ordered_json::array();

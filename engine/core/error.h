@@ -6,6 +6,7 @@
 // prints it as is and exits non-zero, so callers never add context twice.
 #pragma once
 
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,20 @@ inline std::string error_at_byte(const std::string& path, long long offset, cons
   std::ostringstream os;
   os << path << ": byte " << offset << ": " << what;
   return os.str();
+}
+
+// Runs f and returns what it returns; an allocation failure inside (std::bad_alloc, or
+// std::length_error for a size no container can hold) becomes gmg::Error "<what>: out of memory
+// <doing>", so even that error names the file it came from.
+template <typename F>
+auto naming_memory_errors(const std::string& what, const std::string& doing, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::bad_alloc&) {
+    throw Error(what + ": out of memory " + doing);
+  } catch (const std::length_error&) {
+    throw Error(what + ": out of memory " + doing + " (a size beyond what can be allocated)");
+  }
 }
 
 // Parameter checks of every stage: throws gmg::Error "invalid config: <what>" when !ok. `what`

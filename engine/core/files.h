@@ -1,23 +1,112 @@
-// File helpers shared by every writer: output appears complete or not at all.
+// File helpers shared by every reader and writer: inputs are regular files read whole, outputs
+// appear complete or not at all, never on top of an input, and no temporary file outlives an
+// interrupted process.
 #pragma once
 
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace gmg {
 
-// Calls write(stream) on a temporary file beside `path`, then renames it to `path`. When write
-// throws or the stream fails, the temporary file is removed, `path` is left untouched and
-// gmg::Error (naming `path`) is thrown. So an interrupted or failed job leaves no partial file.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
-                           bool binary = false);
+// ---- Reading ------------------------------------------------------------------------------------
 
 // Whole file as bytes: the one file reader of the engine (WAV, BVH, transcripts, lexicons, JSON
 // all come through it), so every "cannot read" error has one wording, "path: what":
 //   "x.wav: cannot open (No such file or directory)"
 //   "x: is a folder, not a file"
+//   "x: is a FIFO (named pipe), not a regular file"   (also: a character or block device, a socket)
 //   "x: read error (Input/output error)"
+//   "x: out of memory reading 123456789 bytes"      (engine/core/error.h naming_memory_errors)
+// Anything but a regular file is refused before it is opened for reading (and the open itself
+// cannot block), so a FIFO or a device given as input cannot hang or stream forever.
 std::string read_file_bytes(const std::string& path);
+
+// Throws read_file_bytes's error when path exists and is not a regular file (a missing file is
+// left to the reader's "cannot open").
+void check_input_file(const std::string& path);
+
+// ---- Writing ------------------------------------------------------------------------------------
+
+// Calls write(stream) on a temporary file beside `path` ("<path>.tmp<pid>_<n>"), then renames it
+// to `path`. When write throws or the stream fails, the temporary file is removed, `path` is
+// left untouched and gmg::Error (naming `path`) is thrown. So an interrupted or failed job leaves
+// no partial file. While an OutputTransaction is open on the calling thread, the rename waits
+// for its commit().
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                           bool binary = false);
+
+// The files one command writes, all or nothing. While it is open (on this thread),
+// write_file_atomically leaves each finished temporary file in place; commit() renames them all
+// into place; destroyed without a commit (an exception, an error in a later step) it removes
+// them, so a failed report also takes away the BVH it belonged to. Transactions nest (the inner
+// one is the current); a path written twice keeps the second version.
+class OutputTransaction {
+ public:
+  OutputTransaction();
+  ~OutputTransaction();
+  OutputTransaction(const OutputTransaction&) = delete;
+  OutputTransaction& operator=(const OutputTransaction&) = delete;
+
+  // Renames every staged file into place, in the order written. Throws gmg::Error naming the file
+  // whose rename failed (the ones after it are removed).
+  void commit();
+  // Drops the staged version of `path` (nothing is written there).
+  void discard(const std::string& path);
+  // Paths staged so far, in order.
+  std::vector<std::string> staged() const;
+
+  // Internal: write_file_atomically hands a finished temporary file over.
+  void stage(const std::string& temp, const std::string& path, int slot);
+
+ private:
+  struct Staged {
+    std::string temp, path;
+    int slot = -1;  // in the interrupt registry (register_temporary_file)
+  };
+  std::vector<Staged> staged_;
+  OutputTransaction* previous_ = nullptr;
+};
+
+// ---- Outputs apart from inputs ------------------------------------------------------------------
+
+// A file named on the command line, with the option that named it ("-o", "--audio").
+struct NamedFile {
+  std::string option;
+  std::string path;
+};
+
+// Throws gmg::Error before any work when an output is an input (the same file, also through a
+// symbolic or hard link: compared with std::filesystem::equivalent) or two outputs are the same
+// file: "in.bvh: -o would overwrite the input given as --motion; choose another output". Empty
+// paths are ignored.
+void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
+
+// ---- Interruption -------------------------------------------------------------------------------
+
+// A process-wide table of temporary files that a SIGINT, SIGTERM or SIGHUP removes (see
+// InterruptCleanup). register_temporary_file returns its slot, or -1 when the table (256 paths
+// of up to 4095 bytes) is full and the file will not be removed on a signal.
+int register_temporary_file(const std::string& path) noexcept;
+void unregister_temporary_file(int slot) noexcept;
+// Unlinks every registered file. Async-signal-safe (unlink(2) on a fixed array): for handlers.
+void remove_registered_temporary_files() noexcept;
+
+// While alive, SIGINT, SIGTERM and SIGHUP remove the registered temporary files and then end the
+// process as the signal would (the previous handlers are restored on destruction). cli_main
+// holds one for every subcommand; `gmg batch` installs its own graceful handler on top, which
+// calls remove_registered_temporary_files before dying on a second signal.
+class InterruptCleanup {
+ public:
+  InterruptCleanup();
+  ~InterruptCleanup();
+  InterruptCleanup(const InterruptCleanup&) = delete;
+  InterruptCleanup& operator=(const InterruptCleanup&) = delete;
+
+ private:
+  struct Saved;
+  Saved* saved_;
+};
 
 }  // namespace gmg

@@ -62,6 +62,10 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& name)
   return parse_as<nlohmann::json>(text, name);
 }
 
+nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const std::string& name) {
+  return parse_as<nlohmann::ordered_json>(text, name);
+}
+
 nlohmann::json read_json_file(const std::string& path) { return parse_as<nlohmann::json>(read_file_bytes(path), path); }
 
 nlohmann::ordered_json read_ordered_json_file(const std::string& path) {

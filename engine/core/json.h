@@ -18,6 +18,7 @@ nlohmann::ordered_json read_ordered_json_file(const std::string& path);
 
 // Same for text already in memory; `name` labels errors.
 nlohmann::json parse_json_text(const std::string& text, const std::string& name);
+nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const std::string& name);
 
 // Serialises without ever throwing on bytes: invalid UTF-8 in a string is replaced by U+FFFD.
 // indent < 0 gives one line.

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/npz.h"
@@ -16,6 +17,7 @@ namespace {
 // True when the file starts with a zip local header. A file that cannot be opened is left to the
 // reader, whose error says why.
 bool starts_like_zip(const std::string& path) {
+  check_input_file(path);  // a FIFO or a device must not be opened (the open could block)
   std::ifstream in(path, std::ios::binary);
   char head[4] = {0, 0, 0, 0};
   return in.read(head, 4) && std::string(head, 4) == std::string("PK\x03\x04", 4);

@@ -81,7 +81,10 @@ TEST(ConfigSet, BadValuesNameTheKeyAndTheValue) {
   EXPECT_EQ(error_of([&] { config_set(c, "fallbacks", "maybe"); }),
             "config key 'fallbacks': 'maybe' is not true or false");
   EXPECT_EQ(error_of([&] { config_set(c, "seed", "-1"); }), "config key 'seed': must not be negative");
-  EXPECT_EQ(error_of([&] { config_set(c, "l_blend", "3000000000"); }), "config key 'l_blend': out of range");
+  EXPECT_EQ(error_of([&] { config_set(c, "l_blend", "3000000000"); }),
+            "config key 'l_blend': 3000000000 is out of range (0 to 1000)");
+  EXPECT_EQ(error_of([&] { config_set(c, "seed", "18446744073709551616"); }),
+            "config key 'seed': 18446744073709551616 is out of range (0 to 18446744073709551615)");
   EXPECT_EQ(c.graph.l_pn, Config{}.graph.l_pn);  // a rejected value changes nothing
 }
 
@@ -115,10 +118,10 @@ TEST(ConfigFrom, DefaultsThenFileThenAssignmentsInOrderThenValidation) {
   EXPECT_EQ(c.search.l_npaths, Config{}.search.l_npaths);  // untouched keys keep their default
   const Config d = config_from("", {});
   EXPECT_EQ(config_to_json(d), config_to_json(Config{}));
-  // Validation runs on the result: l_pn must be at least 1.
-  const std::string e = error_of([&] { config_from(file, {"l_pn=0"}); });
+  // Validation runs on the result: w_full must have l_feat weights.
+  const std::string e = error_of([&] { config_from(file, {"l_feat=3"}); });
   EXPECT_EQ(e.rfind("invalid config: ", 0), 0u) << e;
-  EXPECT_NE(e.find("l_pn"), std::string::npos) << e;
+  EXPECT_NE(e.find("w_full"), std::string::npos) << e;
 }
 
 TEST(ConfigLoadFile, ErrorsNameTheFile) {
@@ -195,6 +198,56 @@ TEST(ConfigKeys, EveryKeyReadsBackWhatItPrints) {
   }
   const nlohmann::json j = nlohmann::json::parse(config_to_json(d));
   EXPECT_EQ(j.size(), config_keys().size());
+}
+
+// The message of whatever f throws ("" when nothing).
+template <typename F>
+std::string error_of_any(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every whole-number key documents its range in its help ("[1 to 1000]") and enforces it: both
+// ends are accepted, one beyond either is refused naming the key and the range.
+TEST(ConfigKeys, EveryWholeNumberKeyHasADocumentedRange) {
+  int checked = 0;
+  for (const ConfigKey& k : config_keys()) {
+    Config probe;
+    const std::string why = error_of_any([&] { config_set(probe, k.name, "0.5"); });
+    if (why.find("is not a whole number") == std::string::npos || k.name == "seed") continue;
+    const std::size_t open = k.help.rfind(" ["), to = k.help.find(" to ", open == std::string::npos ? 0 : open);
+    ASSERT_NE(open, std::string::npos) << k.name << " has no range in its help: " << k.help;
+    ASSERT_NE(to, std::string::npos) << k.help;
+    const long long lo = std::stoll(k.help.substr(open + 2, to - open - 2));
+    const long long hi = std::stoll(k.help.substr(to + 4));
+    Config c;
+    config_set(c, k.name, std::to_string(lo));
+    config_set(c, k.name, std::to_string(hi));
+    for (const long long beyond : {lo - 1, hi + 1})
+      EXPECT_EQ(error_of([&] { config_set(c, k.name, std::to_string(beyond)); }),
+                "config key '" + k.name + "': " + std::to_string(beyond) + " is out of range (" + std::to_string(lo) +
+                    " to " + std::to_string(hi) + ")");
+    ++checked;
+  }
+  EXPECT_EQ(checked, 10);  // l_cn, l_pn, l_npaths, l_feat, retries, merge_below, ignore_rounds, l_blend,
+                           // smooth_window, smooth_order
+  Config c;
+  EXPECT_EQ(error_of([&] { config_set(c, "l_npaths", "1000000000"); }),
+            "config key 'l_npaths': 1000000000 is out of range (1 to 1000)");
+  EXPECT_EQ(error_of([&] { config_set(c, "max_length_factor", "1e300"); }),
+            "config key 'max_length_factor': 1e300 is out of range (1.1 to 100)");
+}
+
+TEST(ConfigToJson, RoundTripsTheLargestSeed) {
+  TempDir dir;
+  Config c;
+  config_set(c, "seed", "18446744073709551615");
+  write_text(dir.file("c.json"), config_to_json(c));
+  EXPECT_EQ(config_from(dir.file("c.json"), {}).seed, 18446744073709551615ull);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "audio/resample.h"
 #include "audio/wav.h"
 #include "engine/core/error.h"
 #include "tests/core/helpers.h"
@@ -479,6 +480,38 @@ TEST(WavRealData, Pcm16File) {
     const double q = a.samples[i] * 32768.0;
     ASSERT_EQ(q, std::round(q)) << i;
   }
+}
+
+TEST(Wav, SampleRateFromFourTo192Kilohertz) {
+  TempDir dir;
+  const std::string d(8, '\x01');
+  for (std::uint32_t rate : {4000u, 192000u}) {
+    Fmt f;
+    f.rate = rate;
+    EXPECT_EQ(read_bytes(dir, "ok.wav", wav(f, d)).sample_rate, static_cast<int>(rate));
+  }
+  for (std::uint32_t rate : {1u, 3999u, 192001u, 10000019u, 2147483647u, 4294967295u}) {
+    Fmt f;
+    f.rate = rate;
+    expect_wav_error(dir, "rate.wav", wav(f, d),
+                     {"byte 24", "sample rate " + std::to_string(rate) + " Hz is outside the 4000 to 192000 Hz"});
+  }
+}
+
+TEST(Wav, ParseWavNamesTheLabel) {
+  Fmt f;
+  const Audio a = gmg::audio::parse_wav(wav(f, std::string(4, '\0')), "in memory");
+  EXPECT_EQ(a.samples.size(), 2u);
+  EXPECT_EQ(error_of([] { gmg::audio::parse_wav("RIFX", "label.wav"); }),
+            "label.wav: byte 4: file ends after 4 bytes, inside the RIFF header");
+}
+
+TEST(Wav, ResamplerRefusesAFilterBeyondTheLimit) {
+  // 1000003 Hz shares no factor with 22050: 20 * 1000003 + 1 taps.
+  EXPECT_EQ(error_of([] { gmg::audio::resample_poly(std::vector<float>(4, 0.f), 1000003, 22050); }),
+            "resample_poly: resampling from 1000003 Hz to 22050 Hz needs a filter of 20000061 taps (at most 3840001)");
+  // The highest rate the reader accepts, coprime or not, stays within it.
+  EXPECT_EQ(gmg::audio::resample_poly(std::vector<float>(100, 0.f), 191999, 22050).size(), 12u);
 }
 
 }  // namespace

@@ -5,6 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "tests/core/helpers.h"
@@ -102,6 +107,114 @@ TEST(Files, AtomicWriteIntoMissingFolderNamesTheFile) {
   const std::string msg = error_of([&] { write_file_atomically(path, [](std::ostream& os) { os << "x"; }); });
   EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
   EXPECT_CONTAINS(msg, "No such file or directory");
+}
+
+TEST(Files, ReadRefusesAFifoWithoutWaitingForAWriter) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe.wav");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  // Opening a FIFO for reading blocks until a writer comes; the reader must refuse it first.
+  EXPECT_EQ(error_of([&] { read_file_bytes(fifo); }), fifo + ": is a FIFO (named pipe), not a regular file");
+  EXPECT_EQ(error_of([&] { check_input_file(fifo); }), fifo + ": is a FIFO (named pipe), not a regular file");
+}
+
+TEST(Files, ReadRefusesADevice) {
+  // /dev/zero would never end; /dev/null is the one every system has.
+  EXPECT_EQ(error_of([] { read_file_bytes("/dev/null"); }), "/dev/null: is a character device, not a regular file");
+  check_input_file("/no/such/file");  // a missing file is left to the reader's "cannot open"
+}
+
+TEST(Files, OutputsApartFromInputs) {
+  TempDir dir;
+  const std::string in = dir.file("in.bvh"), other = dir.file("other.bvh");
+  write_text(in, "x");
+  std::filesystem::create_symlink(in, dir.file("link.bvh"));
+  std::filesystem::create_hard_link(in, dir.file("hard.bvh"));
+  const std::vector<NamedFile> inputs = {{"--motion", in}, {"--audio", ""}};
+  EXPECT_EQ(error_of([&] {
+              check_outputs_apart({{"-o", in}}, inputs);
+            }),
+            in + ": -o would overwrite the input given as --motion; choose another output");
+  EXPECT_EQ(
+      error_of([&] {
+        check_outputs_apart({{"-o", dir.file("link.bvh")}}, inputs);
+      }),
+      dir.file("link.bvh") + ": -o would overwrite the input given as --motion (" + in + "); choose another output");
+  EXPECT_NE(error_of([&] { check_outputs_apart({{"-o", dir.file("hard.bvh")}}, inputs); }), "");
+  // The same file by another spelling, not yet existing: two outputs.
+  EXPECT_EQ(error_of([&] {
+              check_outputs_apart({{"-o", other}, {"--report", dir.file("./other.bvh")}}, inputs);
+            }),
+            dir.file("./other.bvh") + ": given as both -o and --report; each output needs its own file");
+  check_outputs_apart({{"-o", other}, {"--report", ""}}, inputs);  // distinct or empty: fine
+}
+
+TEST(Files, TransactionCommitsEveryFileOrNone) {
+  TempDir dir;
+  const std::string a = dir.file("a.bvh"), b = dir.file("b.json");
+  write_text(b, "old");
+  {
+    OutputTransaction t;
+    write_file_atomically(a, [](std::ostream& os) { os << "motion"; });
+    write_file_atomically(b, [](std::ostream& os) { os << "report"; });
+    EXPECT_FALSE(std::filesystem::exists(a));  // staged, not yet in place
+    EXPECT_EQ(read_file_bytes(b), "old");
+    EXPECT_EQ(t.staged(), (std::vector<std::string>{a, b}));
+  }  // no commit: nothing written, no temporary left
+  EXPECT_FALSE(std::filesystem::exists(a));
+  EXPECT_EQ(read_file_bytes(b), "old");
+  EXPECT_EQ(entries_in(dir.path()), 1u);
+  {
+    OutputTransaction t;
+    write_file_atomically(a, [](std::ostream& os) { os << "first"; });
+    write_file_atomically(a, [](std::ostream& os) { os << "second"; });  // the later version wins
+    write_file_atomically(b, [](std::ostream& os) { os << "report"; });
+    t.discard(b);
+    t.commit();
+  }
+  EXPECT_EQ(read_file_bytes(a), "second");
+  EXPECT_EQ(read_file_bytes(b), "old");
+  EXPECT_EQ(entries_in(dir.path()), 2u);
+  write_file_atomically(a, [](std::ostream& os) { os << "direct"; });  // no transaction: at once
+  EXPECT_EQ(read_file_bytes(a), "direct");
+}
+
+// A child process writes through write_file_atomically and is interrupted in the middle of the
+// write: the temporary file must be gone and the target never created.
+TEST(Files, InterruptDuringAWriteRemovesTheTemporaryFile) {
+  TempDir dir;
+  const std::string path = dir.file("big.bvh");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const InterruptCleanup cleanup;
+    write_file_atomically(path, [](std::ostream& os) {
+      os << std::string(1 << 20, 'x');
+      os.flush();
+      ::raise(SIGINT);  // as a Ctrl-C would arrive, mid-write
+      os << "never";
+    });
+    ::_exit(0);  // not reached: the signal ends the process
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  EXPECT_EQ(entries_in(dir.path()), 0u);
+}
+
+TEST(Files, RegistryTracksTemporaryFiles) {
+  TempDir dir;
+  const std::string t = dir.file("x.tmp1");
+  write_text(t, "partial");
+  const int slot = register_temporary_file(t);
+  ASSERT_GE(slot, 0);
+  remove_registered_temporary_files();
+  EXPECT_FALSE(std::filesystem::exists(t));
+  write_text(t, "again");
+  unregister_temporary_file(slot);
+  remove_registered_temporary_files();  // no longer registered: left alone
+  EXPECT_TRUE(std::filesystem::exists(t));
+  EXPECT_EQ(register_temporary_file(std::string(5000, 'a')), -1);  // too long for the table
 }
 
 }  // namespace

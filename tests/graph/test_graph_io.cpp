@@ -1,5 +1,7 @@
 // Graph files: save/load round trip, rejection of damaged files, DOT/GraphML export.
 #include <fstream>
+#include <functional>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -71,6 +73,50 @@ TEST(GraphIo, ExportsDotAndGraphml) {
   EXPECT_NE(xml.find("<graphml"), std::string::npos);
   EXPECT_NE(xml.find("keyword"), std::string::npos);
   EXPECT_THROW(graph_write_dot(dir.file("x.dot"), g, 50, 500), Error);
+}
+
+// A file with a valid checksum can still be hostile (made by hand or by another tool): each
+// field is checked. graph_save writes whatever it is given, so these files have valid checksums.
+TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
+  gmg::testing::TempDir dir;
+  auto error_after = [&](const std::function<void(MotionGraph&)>& damage) {
+    MotionGraph g = two_clip_graph();
+    damage(g);
+    const std::string path = dir.file("hand.gmg");
+    graph_save(path, g);
+    try {
+      graph_load(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  auto expect_refused = [&](const std::string& fragment, const std::function<void(MotionGraph&)>& damage) {
+    const std::string what = error_after(damage);
+    EXPECT_NE(what.find("hand.gmg: byte "), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  };
+  expect_refused("frame rate inf is outside 1 to 1000 fps",
+                 [](MotionGraph& g) { g.motion.fps = std::numeric_limits<double>::infinity(); });
+  expect_refused("frame rate 1e+06 is outside", [](MotionGraph& g) { g.motion.fps = 1e6; });
+  expect_refused("frame rate 0.5 is outside", [](MotionGraph& g) { g.motion.fps = 0.5; });
+  expect_refused("clip table inconsistent", [](MotionGraph& g) { g.clips[1].frame_count = 2147483647; });
+  expect_refused("clips do not cover the motion", [](MotionGraph& g) { g.clips.pop_back(); });
+  expect_refused("not finite or not a unit rotation", [](MotionGraph& g) { g.motion.rotations[7].w = 2.0; });
+  expect_refused("not finite or not a unit rotation",
+                 [](MotionGraph& g) { g.motion.translations[3].y = std::numeric_limits<double>::quiet_NaN(); });
+  expect_refused("a keyword without its kind", [](MotionGraph& g) { g.graph[5].keyword = "stray"; });
+  expect_refused("edge with an invalid weight", [](MotionGraph& g) {
+    boost::add_edge(3, 90, EdgeInfo{-1.0, false}, g.graph);
+  });
+  expect_refused("edge with an invalid weight", [](MotionGraph& g) {
+    boost::add_edge(3, 90, EdgeInfo{0.0, true}, g.graph);
+  });
+  expect_refused("unknown or repeated channel", [](MotionGraph& g) {
+    g.motion.skeleton.joints[1].channels.push_back(g.motion.skeleton.joints[1].channels.back());
+  });
+  expect_refused("build parameters are out of range", [](MotionGraph& g) { g.params.l_pn = 0; });
+  EXPECT_EQ(error_after([](MotionGraph&) {}), "accepted");  // the control
 }
 
 }  // namespace

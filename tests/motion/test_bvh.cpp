@@ -1,5 +1,6 @@
 // Tests of engine/motion/bvh (bvh_read.cpp, bvh_write.cpp): parsing, writing, round trips,
 // errors with file and line.
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -79,12 +80,16 @@ std::vector<std::vector<double>> channel_values(const std::string& text) {
     std::vector<double> row;
     const char* p = text.data() + pos;
     const char* end = text.data() + eol;
-    while (p < end) {
-      char* next = nullptr;
-      const double v = std::strtod(p, &next);
-      if (next == p) break;
+    // from_chars within the line: strtod would skip the CR LF and read the next line's first value
+    // (past `end`, and past the buffer on the last line of a string_view).
+    while (true) {
+      while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+      if (p >= end) break;
+      double v = 0.0;
+      const auto res = std::from_chars(p, end, v);
+      if (res.ec != std::errc()) break;
       row.push_back(v);
-      p = next;
+      p = res.ptr;
     }
     if (!row.empty()) rows.push_back(row);
     pos = eol + 1;
@@ -218,6 +223,67 @@ TEST(BvhErrors, ByteEfWithoutTheRestOfABomIsNotABom) {
   // before HIERARCHY used to be dropped with the next two bytes.
   expect_bvh_error("\xEFxxHIERARCHY\n" + std::string(kChainBvh).substr(11), "not a BVH file");
   expect_bvh_error("\xEF\xBBxHIERARCHY\n" + std::string(kChainBvh).substr(11), "not a BVH file");
+}
+
+// ---- hostile input: limits of engine/core/limits.h ----
+
+TEST(BvhLimits, HundredThousandNestedJointsAreAnErrorNotAStackOverflow) {
+  std::string text = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n";
+  text.reserve(3'000'000);
+  for (int i = 0; i < 100000; ++i) text += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\n";
+  expect_bvh_error(text, "line 771: joints nested more than 256 deep");
+}
+
+TEST(BvhLimits, DepthAndJointCountAtTheLimitAreRead) {
+  std::string deep = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n";
+  for (int i = 1; i < 256; ++i) deep += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\n";
+  for (int i = 0; i < 256; ++i) deep += "}\n";
+  EXPECT_EQ(bvh_parse(deep + "MOTION\nFrames: 1\nFrame Time: 0.1\n5\n", "deep.bvh").joint_count(), 256);
+  expect_bvh_error(replace_once(deep, "JOINT j255\n{\nOFFSET 0 1 0\n", "JOINT j255\n{\nOFFSET 0 1 0\nJOINT x\n{\n") +
+                       "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n5\n",
+                   "joints nested more than 256 deep");
+
+  auto flat = [](int joints) {
+    std::string t = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n";
+    for (int i = 1; i < joints; ++i) t += "JOINT " + std::to_string(i) + "\n{ OFFSET 0 1 0 }\n";
+    return t + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n5\n";
+  };
+  EXPECT_EQ(bvh_parse(flat(1024), "wide.bvh").joint_count(), 1024);
+  expect_bvh_error(flat(1025), "more than 1024 joints");
+}
+
+TEST(BvhLimits, AFramesHeaderBeyondTheFileIsRefusedBeforeAnythingIsAllocated) {
+  // 10^8 frames of 3 joints would take 24 GB; the file has 2 frame lines.
+  expect_bvh_error(replace_once(kChainBvh, "Frames: 2", "Frames: 100000000"),
+                   "line 22: 'Frames: 100000000' of 3 joints would take 22888 MB of memory, more than a file of");
+  expect_bvh_error(replace_once(kChainBvh, "Frames: 2", "Frames: 100000001"), "invalid frame count 100000001");
+  // A modest lie within the budget is read as far as it goes and reported as truncated.
+  expect_bvh_error(replace_once(kChainBvh, "Frames: 2", "Frames: 1000"),
+                   "truncated: 'Frames:' declares 1000 frames but the file has 2");
+}
+
+TEST(BvhLimits, MemoryPerFileByteBoundsJointsWithoutChannels) {
+  // 301 joints x 80 bytes x 1000 frames = 24 MB from a 10 KB file: more than the 16 MB floor and
+  // 48 bytes per file byte.
+  std::string t = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n";
+  for (int i = 0; i < 300; ++i) t += "JOINT " + std::to_string(i) + "\n{ OFFSET 0 1 0 }\n";
+  t += "}\nMOTION\nFrames: 1000\nFrame Time: 0.1\n";
+  for (int i = 0; i < 1000; ++i) t += "0\n";
+  expect_bvh_error(t, "'Frames: 1000' of 301 joints would take 22 MB of memory");
+}
+
+TEST(BvhLimits, FrameRateFromOneToAThousandFps) {
+  EXPECT_DOUBLE_EQ(bvh_parse(replace_once(kChainBvh, "Frame Time: 0.0333333", "Frame Time: 0.001"), "a").fps, 1000);
+  EXPECT_DOUBLE_EQ(bvh_parse(replace_once(kChainBvh, "Frame Time: 0.0333333", "Frame Time: 1"), "a").fps, 1);
+  expect_bvh_error(replace_once(kChainBvh, "Frame Time: 0.0333333", "Frame Time: 0.000001"),
+                   "line 23: Frame Time 1e-06 s is 1e+06 frames per second; gmg reads 1 to 1000 fps");
+  expect_bvh_error(replace_once(kChainBvh, "Frame Time: 0.0333333", "Frame Time: 1e-300"), "e+299 frames per second");
+  expect_bvh_error(replace_once(kChainBvh, "Frame Time: 0.0333333", "Frame Time: 2"), "0.5 frames per second");
+}
+
+TEST(BvhLimits, NoChannelsAtAllIsNamed) {
+  const std::string t = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n\n";
+  expect_bvh_error(t, "the hierarchy declares no channels");
 }
 
 TEST(Motion, WriteRefusesNanAndLeavesNoFile) {

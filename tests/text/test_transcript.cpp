@@ -1,6 +1,7 @@
 // Tests of text/transcript: format names, choice by extension, the fit to the audio.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,30 @@ TEST(TextFits, PastTheEndNamesFile) {
   EXPECT_CONTAINS(msg, "some/t.tsv");
   EXPECT_CONTAINS(msg, "\"b\"");
   EXPECT_THROW(tx::check_transcript_fits(words, 10.0, "t.tsv", 0.0), gmg::Error);
+}
+
+// The readers of bytes in memory (the fuzz harnesses use them) read what the file readers read
+// and name the label they are given.
+TEST(TextFormat, ParsersOfBytesInMemoryNameTheirLabel) {
+  EXPECT_EQ(tx::parse_tsv("0\t1\tword\n", "mem.tsv").at(0).text, "word");
+  EXPECT_EQ(tx::parse_textgrid(gmg::testing::to_utf16(kLongTextGrid, true), "mem.TextGrid").size(),
+            tx::parse_textgrid(kLongTextGrid, "mem.TextGrid").size());
+  EXPECT_EQ(tx::parse_google_json(R"([{"alternatives":[{"words":[{"start_time":"0s","end_time":"1s","word":"x"}]}]}])",
+                                  "mem.json")
+                .at(0)
+                .text,
+            "x");
+  EXPECT_EQ(error_of([] { tx::parse_tsv("0\tone\tword\n", "mem.tsv"); }).rfind("mem.tsv: line 1: ", 0), 0u);
+  EXPECT_EQ(error_of([] { tx::parse_textgrid("nothing", "mem.TextGrid"); }).rfind("mem.TextGrid", 0), 0u);
+  EXPECT_EQ(error_of([] { tx::parse_google_json("[1e309]", "mem.json"); }),
+            "mem.json: byte 6: invalid JSON (the number 1e309 is out of range for a double)");
+}
+
+TEST(TextFormat, FolderAsTranscriptIsAnError) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("words.tsv"));
+  EXPECT_EQ(error_of([&] { tx::read_transcript(dir.file("words.tsv")); }),
+            dir.file("words.tsv") + ": is a folder, not a file");
 }
 
 }  // namespace

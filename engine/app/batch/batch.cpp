@@ -153,7 +153,11 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
   std::set<std::string> blacklist;
   if (!options.blacklist.empty()) blacklist = read_blacklist(options.blacklist);
   const std::vector<std::string> pool_stems = eligible_pool(clips.pool, blacklist, options, &summary.blacklisted);
-  const fs::path out_dir = prepare_output_folder(options, progress);
+  const OutputFolder out = prepare_output_folder(options, progress);  // locked until the end of the run
+  const fs::path& out_dir = out.dir;
+  check_and_write_run_record(out_dir, options.output_dir,
+                             run_record(clip_config.seed, pairing, pool_stems, clip_config), clips.tests,
+                             options.force);
 
   const Pairing pairs = pair_tests(options, pairing, clips, blacklist, pool_stems, clip_config.seed);
   summary.clips = initial_results(pairs, clips.tests, out_dir, options.force);

@@ -53,7 +53,13 @@
 //   A clip whose BVH exists is skipped unless --force (its reference in pairs.csv is the one the
 //   previous pairs.csv recorded, when it did; its frames, fallbacks, failures and seconds in the
 //   summary are the previous summary.json's, when it recorded them). Stale temporary files of a killed run (of a
-//   process no longer alive) are removed.
+//   process no longer alive) are removed. A clip's BVH and report are written together or not at all.
+// - One batch at a time per folder: OUTDIR/.gmg-batch.lock is locked (flock) for the whole run, so
+//   a second batch into it is a setup error. OUTDIR/batch.json records the seed, pairing, pool
+//   stems and parameters; a re-run whose settings differ while the folder holds outputs of its
+//   test clips is a setup error naming the difference (outputs of both would mix), unless --force.
+// - Stems name outputs, so a stem must be a plain file name: a manifest stem with a '/'
+//   ("../escaped") is a setup error naming the manifest line.
 // - A clip that cannot be made (unreadable input, broken reference, ...) fails with its error
 //   text in the summary; the others complete.
 #pragma once

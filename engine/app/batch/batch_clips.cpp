@@ -118,6 +118,13 @@ std::string pick_audio(const std::string& stem, const StemFiles& f, Clips& clips
   return f.wav.empty() ? f.audio : f.wav;
 }
 
+// Outputs are named OUTDIR/<stem>.bvh and .json, so a stem must be a plain file name: with a '/'
+// ("../escaped") the output would land outside OUTDIR.
+bool is_plain_stem(const std::string& stem) {
+  return !stem.empty() && stem != "." && stem != ".." && stem.find('/') == std::string::npos &&
+         stem.find('\0') == std::string::npos;
+}
+
 void add_clip(ClipMap& clips, ClipFiles c, const char* role) {
   auto [it, inserted] = clips.emplace(c.stem, c);
   if (!inserted)
@@ -175,6 +182,10 @@ ClipFiles manifest_clip(const CsvRow& row, const ManifestColumns& col, const std
   if (c.wav.empty()) throw Error(error_at_line(path, row.line, "no WAV file given"));
   if (pool && c.bvh.empty()) throw Error(error_at_line(path, row.line, "no BVH file given"));
   if (c.stem.empty()) c.stem = fs::path(pool ? c.bvh : c.wav).stem().string();
+  if (!is_plain_stem(c.stem))
+    throw Error(error_at_line(
+        path, row.line,
+        "stem '" + c.stem + "' is not a plain file name (outputs are named after it inside the output folder)"));
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "engine/app/batch/batch.h"
+#include "engine/core/files.h"
 
 namespace gmg {
 namespace {
@@ -16,7 +17,8 @@ namespace {
 std::atomic<bool> g_interrupt{false};
 
 void batch_on_signal(int sig) {
-  if (g_interrupt.load()) {  // second signal: die the ordinary way
+  if (g_interrupt.load()) {  // second signal: die the ordinary way, leaving no temporary file
+    remove_registered_temporary_files();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;

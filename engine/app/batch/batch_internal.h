@@ -15,12 +15,15 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <ostream>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "engine/app/batch/batch.h"
 
@@ -107,9 +110,39 @@ class Progress {
 
 // ---- Output folder (batch_output.cpp) -------------------------------------------------------
 
-// Creates OUTDIR, refuses one that is an input folder, removes stale temporary files of a
-// killed run (reported on `progress`).
-fs::path prepare_output_folder(const BatchOptions& options, Progress& progress);
+// An exclusive lock (flock) on OUTDIR/.gmg-batch.lock, held while alive: two batches never write
+// into one folder at once. The lock goes with the process, however it ends.
+class FolderLock {
+ public:
+  // Throws gmg::Error naming the folder when another process holds the lock.
+  FolderLock(const fs::path& dir, const std::string& name);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+struct OutputFolder {
+  fs::path dir;
+  std::unique_ptr<FolderLock> lock;
+};
+
+// Creates OUTDIR, refuses one that is an input folder or in use by another batch (and locks it
+// for this one), removes stale temporary files of a killed run (reported on `progress`).
+OutputFolder prepare_output_folder(const BatchOptions& options, Progress& progress);
+
+// OUTDIR/batch.json, the record of what the folder's outputs were made with: seed, pairing,
+// pool stems and parameters. Written before any clip starts.
+nlohmann::ordered_json run_record(std::uint64_t seed, BatchPairing pairing, const std::vector<std::string>& pool_stems,
+                                  const Config& config);
+
+// Throws gmg::Error when OUTDIR holds outputs of a test clip of this run (which would be skipped)
+// and its batch.json records another seed, pairing, pool or parameters, unless `force` (every
+// clip is then redone): outputs of two settings would mix silently. Then writes `record`.
+void check_and_write_run_record(const fs::path& out_dir, const std::string& name, const nlohmann::ordered_json& record,
+                                const ClipMap& tests, bool force);
 
 // ---- Summary (batch_summary.cpp) ------------------------------------------------------------
 

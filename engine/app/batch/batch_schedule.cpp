@@ -10,6 +10,7 @@
 #include "engine/app/batch/batch_internal.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/files.h"
+#include "engine/core/json.h"
 #include "engine/motion/bvh.h"
 
 namespace gmg::batch_internal {
@@ -138,16 +139,24 @@ class Scheduler {
     }
     const ClipFiles& t = setup_.tests.at(c.test_stem);
     try {
+      const std::string report = (setup_.out_dir / (c.test_stem + ".json")).string();
+      check_outputs_apart({{"the output", c.output}, {"the report", setup_.options.reports ? report : ""}},
+                          {{"its WAV", t.wav},
+                           {"its transcript", t.transcript},
+                           {"the reference BVH", ref.motion},
+                           {"the reference WAV", ref.audio},
+                           {"the reference transcript", ref.transcript}});
       SpeechFiles speech;
       speech.audio = t.wav;
       speech.transcript = t.transcript;
       const Reenactment re = reenact(*graph, speech, setup_.config, ref.motion);
+      OutputTransaction outputs;  // the BVH and its report, both or neither
       bvh_write(c.output, re.motion);
       if (setup_.options.reports) {
-        const std::string json = re.report.dump(2) + "\n";
-        const std::string path = (setup_.out_dir / (c.test_stem + ".json")).string();
-        write_file_atomically(path, [&](std::ostream& os) { os << json; });
+        const std::string json = json_dump(re.report, 2) + "\n";
+        write_file_atomically(report, [&](std::ostream& os) { os << json; });
       }
+      outputs.commit();
       c.frames = re.motion.frame_count;
       c.fallbacks = re.plan.fallback_total();
       c.failures = re.plan.failure_count();

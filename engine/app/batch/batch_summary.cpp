@@ -8,6 +8,7 @@
 #include "engine/app/batch/batch_internal.h"
 #include "engine/core/csv.h"
 #include "engine/core/files.h"
+#include "engine/core/json.h"
 
 namespace gmg::batch_internal {
 namespace {
@@ -94,7 +95,7 @@ std::map<std::string, PreviousClip> read_previous_summary(const fs::path& out_di
   const fs::path prev = out_dir / "summary.json";
   if (!fs::exists(prev, ec)) return out;
   try {
-    const nlohmann::json j = nlohmann::json::parse(read_file_bytes(prev.string()));
+    const nlohmann::json j = read_json_file(prev.string());
     for (const nlohmann::json& c : j.at("clips"))
       if (c.at("test").is_string()) out[c.at("test").get<std::string>()] = previous_clip(c);
   } catch (const std::exception&) {
@@ -148,7 +149,7 @@ void write_summary_files(const fs::path& out_dir, const BatchSummary& summary, c
                       std::to_string(c.frames), std::to_string(c.fallbacks), std::to_string(c.failures),
                       fixed(c.seconds, 3), c.output, c.error});
   });
-  const std::string json = summary_json(summary, options, pairing).dump(2) + "\n";
+  const std::string json = json_dump(summary_json(summary, options, pairing), 2) + "\n";
   write_file_atomically((out_dir / "summary.json").string(), [&](std::ostream& os) { os << json; });
 }
 

@@ -10,6 +10,8 @@
 #include "engine/app/synth/synth_internal.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
 #include "engine/motion/bvh.h"
 
 namespace gmg {
@@ -21,8 +23,13 @@ void check_spec(const SynthSpec& spec) {
   if (!std::isfinite(spec.fps) || spec.fps <= 0) bad("fps must be a positive number");
   if (spec.sample_rate < 8000) bad("sample_rate must be at least 8000");
   if (!(spec.style >= 0.0 && spec.style <= 1.0)) bad("style must lie in [0, 1]");
-  if (spec.duration_s * spec.fps > 1e8) bad("clip too long (more than 10^8 frames)");
-  if (spec.duration_s * spec.sample_rate > 1e9) bad("clip too long (more than 10^9 samples)");
+  if (spec.sample_rate > limits::kMaxSampleRate)
+    bad("sample_rate must be at most " + std::to_string(limits::kMaxSampleRate));
+  // The output limits of every generated clip (engine/core/limits.h), checked before any work.
+  if (spec.duration_s > limits::kMaxAudioSeconds)
+    bad("duration_s must be at most " + format_number(limits::kMaxAudioSeconds) + " (a day)");
+  if (spec.duration_s * spec.fps > limits::kMaxOutputFrames)
+    bad("clip too long (more than " + std::to_string(limits::kMaxOutputFrames) + " frames)");
 }
 
 }  // namespace
