@@ -6,6 +6,7 @@
 #include "graph/breaks.h"
 #include "graph/continuity.h"
 #include "graph/features.h"
+#include "graph/graph_builder.h"
 #include "graph/key_nodes.h"
 
 namespace gmg {
@@ -47,11 +48,14 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.params = params;
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
+  const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
+  g.motion.rotations.reserve(samples);
+  g.motion.translations.reserve(samples);
   PoseFeatures features;
   const Eigen::Index dims = 3 * static_cast<Eigen::Index>(first.joint_count());
   features.positions.resize(dims, total);
   features.velocities.resize(dims, total);
-  g.graph = GraphStorage(static_cast<std::size_t>(total));
+  GraphBuilder builder(total);
 
   int offset = 0;
   for (ClipEvents& c : clips) {
@@ -62,7 +66,7 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
     const PoseFeatures cf = pose_features(m);
     features.positions.middleCols(offset, m.frame_count) = cf.positions;
     features.velocities.middleCols(offset, m.frame_count) = cf.velocities;
-    mark_key_nodes(g.graph, offset, c, capture_jump_frames(cf, params));
+    mark_key_nodes(builder.nodes(), offset, c, capture_jump_frames(cf, params));
     offset += m.frame_count;
     c.motion = Motion();  // release the clip's copy early
   }
@@ -71,16 +75,15 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   std::vector<int> run_end(static_cast<std::size_t>(total));
   int end = total - 1;
   for (int f = total - 1; f >= 0; --f) {
-    if (g.node(f).kinds & kBreakNode) end = f;
+    if (builder.node(f).kinds & kBreakNode) end = f;
     run_end[static_cast<std::size_t>(f)] = end;
   }
   for (int f = 0; f + 1 < total; ++f)
-    if (!(g.node(f).kinds & kBreakNode))
-      boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+    if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
 
   for (const Transition& t : continuity_analysis(features, run_end, params))
-    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false},
-                    g.graph);
+    builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  g.graph = builder.finish();
   return g;
 }
 

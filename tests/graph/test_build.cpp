@@ -22,7 +22,7 @@ TEST(Graph, BuildJoinsClipsWithBreaksAndNoNaturalEdgeAcross) {
   EXPECT_TRUE(g.node(105).kinds & kOnsetNode);  // clip b's onset 5, offset 100
   EXPECT_EQ(g.node(150).keyword, "big");
   EXPECT_TRUE(g.node(20).kinds & kKeywordNode);
-  for (auto [it, end] = boost::out_edges(99, g.graph); it != end; ++it) EXPECT_FALSE(g.graph[*it].natural);
+  for (auto [it, end] = boost::out_edges(std::size_t{99}, g.graph); it != end; ++it) EXPECT_FALSE(g.graph[*it].natural);
   const GraphStats s = graph_stats(g);
   EXPECT_EQ(s.onset_nodes, 5);
   EXPECT_EQ(s.keyword_nodes, 3);
