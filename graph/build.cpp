@@ -49,8 +49,10 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
   const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
-  g.motion.rotations.reserve(samples);
-  g.motion.translations.reserve(samples);
+  if (clips.size() > 1) {
+    g.motion.rotations.reserve(samples);
+    g.motion.translations.reserve(samples);
+  }
   PoseFeatures features;
   const Eigen::Index dims = 3 * static_cast<Eigen::Index>(first.joint_count());
   features.positions.resize(dims, total);
@@ -61,13 +63,18 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (ClipEvents& c : clips) {
     const Motion& m = c.motion;
     g.clips.push_back({c.name, offset, m.frame_count});
-    g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
-    g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
     const PoseFeatures cf = pose_features(m);
     features.positions.middleCols(offset, m.frame_count) = cf.positions;
     features.velocities.middleCols(offset, m.frame_count) = cf.velocities;
     mark_key_nodes(builder.nodes(), offset, c, capture_jump_frames(cf, params));
     offset += m.frame_count;
+    if (clips.size() == 1) {  // one clip: its samples are the graph's, no copy
+      g.motion.rotations = std::move(c.motion.rotations);
+      g.motion.translations = std::move(c.motion.translations);
+    } else {
+      g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
+      g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
+    }
     c.motion = Motion();  // release the clip's copy early
   }
 

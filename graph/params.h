@@ -38,7 +38,7 @@ struct GraphParams {
   int candidates_per_transition = 4;
   NeighbourSearch neighbours = NeighbourSearch::Auto;
   int exact_frames = 30000;  // Auto searches exactly up to this many frames
-  int ann_checks = 0;        // Approximate: distance evaluations per frame at most; 0 = until exact
+  int ann_checks = 2000;     // Approximate: frames examined per frame at most; 0 = until exact
 };
 
 // Throws gmg::Error naming the first key out of range.
