@@ -40,7 +40,7 @@ int check_clips(const std::vector<ClipEvents>& clips) {
 
 }  // namespace
 
-MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params) {
+MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
   graph_params_validate(params);
   const int total = check_clips(clips);
   const Motion& first = clips.front().motion;
@@ -88,7 +88,9 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (int f = 0; f + 1 < total; ++f)
     if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
 
-  for (const Transition& t : continuity_analysis(features, run_end, params))
+  ContinuityProgress analysed;
+  if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };
+  for (const Transition& t : continuity_analysis(features, run_end, params, analysed))
     builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
   g.graph = builder.finish();
   return g;

@@ -55,8 +55,10 @@ struct ReferenceFiles {
   SpeechFiles speech;
 };
 
-// Reads, analyses and joins the clips into one graph.
-MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config);
+// Reads, analyses and joins the clips into one graph, in the order given. Clips are read by up
+// to `jobs` threads (0: every core); a problem names the first clip (in order) that has one.
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
+                                   const BuildProgress& progress = {}, int jobs = 1);
 
 struct Reenactment {
   Motion motion;  // exactly events.total_frames frames, in the graph's skeleton

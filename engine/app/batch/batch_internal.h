@@ -48,6 +48,12 @@ struct Clips {
   std::vector<std::string> notes;  // files found but not used (a BVH without WAV in a pool)
 };
 
+// The reference clips (BVH + WAV + optional transcript) of clip folders and manifests, as a batch
+// pool reads them (see batch.h); files found but not used are described in `notes`. Also what
+// `gmg build --clips` reads.
+ClipMap collect_reference_clips(const std::vector<std::string>& dirs, const std::vector<std::string>& manifests,
+                                std::vector<std::string>& notes);
+
 // Every pool and test clip of the options' folders and manifests (see batch.h). Throws
 // gmg::Error on a setup problem: an unreadable folder or manifest, a stem given twice, no pool
 // or no test clip at all.
