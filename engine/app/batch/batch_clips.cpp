@@ -180,7 +180,12 @@ ClipMap collect_reference_clips(const std::vector<std::string>& dirs, const std:
 
 Clips collect_clips(const BatchOptions& options) {
   Clips clips;
-  clips.pool = collect_reference_clips(options.pool_dirs, options.pool_manifests, clips.notes);
+  if (options.graph.empty()) {
+    clips.pool = collect_reference_clips(options.pool_dirs, options.pool_manifests, clips.notes);
+  } else {
+    const std::string stem = fs::path(options.graph).stem().string();
+    clips.pool.emplace(stem, ClipFiles{stem, options.graph, "", "", "--graph"});
+  }
   for (const std::string& dir : options.test_dirs) add_test_folder(dir, clips);
   for (const std::string& m : options.test_manifests) read_clip_manifest(m, false, clips.tests);
   if (clips.pool.empty()) throw Error("batch: the pool holds no reference clip (a BVH and a WAV with the same stem)");

@@ -8,6 +8,7 @@
 //   batch_progress.cpp  the progress display
 //   batch_schedule.cpp  the workers: graph builds shared by the clips that drew them
 //   batch_summary.cpp   summary.csv/summary.json, and the previous run's figures
+//   batch_merge.cpp     joining the summaries of parts made with --shard
 //   batch_command.cpp   the `batch` subcommand
 #pragma once
 
@@ -138,6 +139,17 @@ void count_statuses(BatchSummary& summary);
 // OUTDIR/summary.csv and OUTDIR/summary.json.
 void write_summary_files(const fs::path& out_dir, const BatchSummary& summary, const BatchOptions& options,
                          BatchPairing pairing);
+
+// A summary.json as batch wrote it, with the two fields the summary itself does not hold.
+struct RecordedSummary {
+  BatchSummary summary;  // clips, references, seed, jobs, times, shard, batch_clips
+  std::string pairing;   // "random" or "manifest"
+  std::string blacklist;
+};
+
+// Reads a summary.json written by write_summary_files. Throws gmg::Error naming the file when
+// it is unreadable or not a batch summary.
+RecordedSummary read_summary_file(const fs::path& path);
 
 // The last progress line: counts, times and where the summary is.
 std::string summary_line(const BatchSummary& summary, const fs::path& out_dir);
