@@ -38,6 +38,26 @@ int check_clips(const std::vector<ClipEvents>& clips) {
   return total;
 }
 
+// The pose features of clip m into columns [offset, offset + frames) of `out`, computed a piece
+// at a time: pose_features of a whole hour holds several copies of it (forward kinematics, its
+// transpose, the velocities). A piece starts one frame early so its first velocity is the
+// clip's (v_t = p_t - p_{t-1}); the values are those of one pose_features call on the clip.
+void clip_features(const Motion& m, int offset, PoseFeatures& out) {
+  constexpr int kPiece = 4096;
+  const std::size_t joints = static_cast<std::size_t>(m.joint_count());
+  for (int first = 0; first < m.frame_count; first += kPiece) {
+    const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
+    Motion piece = motion_rest(m.skeleton, m.fps, to - from);
+    std::copy(m.rotations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.rotations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.rotations.begin());
+    std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
+    const PoseFeatures f = pose_features(piece);
+    out.positions.middleCols(offset + first, to - first) = f.positions.rightCols(to - first);
+    out.velocities.middleCols(offset + first, to - first) = f.velocities.rightCols(to - first);
+  }
+}
+
 }  // namespace
 
 MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
@@ -63,10 +83,9 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (ClipEvents& c : clips) {
     const Motion& m = c.motion;
     g.clips.push_back({c.name, offset, m.frame_count});
-    const PoseFeatures cf = pose_features(m);
-    features.positions.middleCols(offset, m.frame_count) = cf.positions;
-    features.velocities.middleCols(offset, m.frame_count) = cf.velocities;
-    mark_key_nodes(builder.nodes(), offset, c, capture_jump_frames(cf, params));
+    clip_features(m, offset, features);
+    mark_key_nodes(builder.nodes(), offset, c,
+                   capture_jump_frames(features.positions.middleCols(offset, m.frame_count), params));
     offset += m.frame_count;
     if (clips.size() == 1) {  // one clip: its samples are the graph's, no copy
       g.motion.rotations = std::move(c.motion.rotations);

@@ -22,7 +22,7 @@ struct Candidate {
 // velocities. For an orthonormal projection E, ||E^T x|| <= ||x||, so
 //   lambda_pos ||E_p^T (p_l - p_r)|| + lambda_vel ||E_v^T (v_l - v_r)|| <= d(l, r):
 // the lower bound both searches prune with. Columns are stored in slots, frame order unless
-// reorder() put them in a search tree's order (so a leaf's frames are contiguous in memory).
+// set_order() put them in a search tree's order (so a leaf's frames are contiguous in memory).
 class PoseSpace {
  public:
   PoseSpace(const PoseFeatures& f, const GraphParams& params) : features_(f), params_(params) {
@@ -30,39 +30,43 @@ class PoseSpace {
     dims_ = static_cast<int>(f.positions.rows());
     lp_ = static_cast<float>(params.lambda_pos);
     lv_ = static_cast<float>(params.lambda_vel);
-    const Eigen::MatrixXd pc = f.positions.colwise() - f.positions.rowwise().mean();
-    const Eigen::MatrixXd vc = f.velocities.colwise() - f.velocities.rowwise().mean();
+    // (No centred copy of the features is made: at an hour of reference that is 130 MB.)
+    mean_p_ = f.positions.rowwise().mean();
+    mean_v_ = f.velocities.rowwise().mean();
+    const Eigen::MatrixXd ep = principal_axes(f.positions, mean_p_), ev = principal_axes(f.velocities, mean_v_);
+    kp_ = static_cast<int>(ep.cols());
+    proj_.resize(ep.cols() + ev.cols(), n_);
+    proj_.topRows(ep.cols()) = ((ep.transpose() * f.positions).colwise() - ep.transpose() * mean_p_).cast<float>();
+    proj_.bottomRows(ev.cols()) = ((ev.transpose() * f.velocities).colwise() - ev.transpose() * mean_v_).cast<float>();
+  }
+
+  // Fills the single-precision features with frame order[s] in slot s (frame order when
+  // `order` is empty); the projections follow. Call once, before any distance.
+  void set_order(const std::vector<int>& order) {
+    if (!order.empty()) {
+      Eigen::MatrixXf proj(proj_.rows(), n_);
+      slot_.assign(static_cast<std::size_t>(n_), 0);
+      for (int s = 0; s < n_; ++s) {
+        proj.col(s) = proj_.col(order[static_cast<std::size_t>(s)]);
+        slot_[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])] = s;
+      }
+      proj_.swap(proj);
+    }
     // Each part padded with zeros to a multiple of 16 floats: distances then run in whole SIMD
     // packets on aligned columns.
     padded_ = (dims_ + 15) / 16 * 16;
     feat_ = Eigen::MatrixXf::Zero(2 * padded_, n_);
-    feat_.topRows(dims_) = pc.cast<float>();
-    feat_.middleRows(padded_, dims_) = vc.cast<float>();
-    const Eigen::MatrixXd ep = principal_axes(pc), ev = principal_axes(vc);
-    kp_ = static_cast<int>(ep.cols());
-    proj_.resize(ep.cols() + ev.cols(), n_);
-    proj_.topRows(ep.cols()) = (ep.transpose() * pc).cast<float>();
-    proj_.bottomRows(ev.cols()) = (ev.transpose() * vc).cast<float>();
+    for (int s = 0; s < n_; ++s) {
+      const int f = order.empty() ? s : order[static_cast<std::size_t>(s)];
+      feat_.col(s).head(dims_) = (features_.positions.col(f) - mean_p_).cast<float>();
+      feat_.col(s).segment(padded_, dims_) = (features_.velocities.col(f) - mean_v_).cast<float>();
+    }
     // Float rounding of the inputs moves a norm by at most ~1.2e-7 of the features' largest norm
     // per term, and the sums by ~dims * 6e-8 of the result: 1e-4 relative and 1e-5 of the largest
     // norms absolute leave a wide margin.
     const float max_p = n_ ? feat_.topRows(padded_).colwise().norm().maxCoeff() : 0.0f;
     const float max_v = n_ ? feat_.bottomRows(padded_).colwise().norm().maxCoeff() : 0.0f;
     abs_error_ = 1e-5f * (lp_ * max_p + lv_ * max_v) + 1e-30f;
-  }
-
-  // Stores frame order[s] in slot s.
-  void reorder(const std::vector<int>& order) {
-    Eigen::MatrixXf feat(feat_.rows(), n_), proj(proj_.rows(), n_);
-    slot_.assign(static_cast<std::size_t>(n_), 0);
-    for (int s = 0; s < n_; ++s) {
-      const int f = order[static_cast<std::size_t>(s)];
-      feat.col(s) = feat_.col(f);
-      proj.col(s) = proj_.col(f);
-      slot_[static_cast<std::size_t>(f)] = s;
-    }
-    feat_.swap(feat);
-    proj_.swap(proj);
   }
 
   int frames() const { return n_; }
@@ -104,11 +108,11 @@ class PoseSpace {
   }
 
  private:
-  // The top principal axes of centred columns (as columns): as many as hold all but 1e-4 of the
+  // The top principal axes of the columns of x (as columns): as many as hold all but 1e-4 of the
   // variance, at least 2, at most kMaxAxes (and the dimension).
-  static Eigen::MatrixXd principal_axes(const Eigen::MatrixXd& centred) {
-    const Eigen::Index dims = centred.rows();
-    const Eigen::MatrixXd cov = centred * centred.transpose() / std::max<double>(1.0, double(centred.cols()));
+  static Eigen::MatrixXd principal_axes(const Eigen::MatrixXd& x, const Eigen::VectorXd& mean) {
+    const Eigen::Index dims = x.rows();
+    const Eigen::MatrixXd cov = x * x.transpose() / std::max<double>(1.0, double(x.cols())) - mean * mean.transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(cov);
     const Eigen::VectorXd values = solver.eigenvalues().reverse();
     const double total = std::max(values.sum(), 1e-300);
@@ -123,8 +127,9 @@ class PoseSpace {
   const GraphParams& params_;
   int n_ = 0, dims_ = 0, padded_ = 0, kp_ = 0;
   float lp_ = 1, lv_ = 1, abs_error_ = 0;
-  Eigen::MatrixXf feat_;   // [positions, padded; velocities, padded] x slots
-  Eigen::MatrixXf proj_;   // projections x slots
+  Eigen::MatrixXf feat_;  // [positions, padded; velocities, padded] x slots
+  Eigen::MatrixXf proj_;  // projections x slots
+  Eigen::VectorXd mean_p_, mean_v_;
   std::vector<int> slot_;  // frame -> slot; empty = identity
 };
 
@@ -230,6 +235,7 @@ class ExactFinder : public CandidateFinder {
         allowed_{params.l_pn, params.exclude_near},
         k_(static_cast<std::size_t>(candidate_limit(params))),
         workers_(workers) {
+    space_.set_order({});
     const int n = space_.frames();
     const int kp = space_.position_dims();
     weighted_ = space_.projections();
@@ -350,7 +356,7 @@ class TreeFinder : public CandidateFinder {
     order_.resize(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) order_[static_cast<std::size_t>(i)] = i;
     if (n > 0) build(0, n);
-    space_.reorder(order_);
+    space_.set_order(order_);
   }
 
   int block_size() const override { return 256; }
