@@ -74,7 +74,7 @@ class Checksum {
   void block(const unsigned char* p) {
     for (int i = 0; i < 4; ++i) {
       std::uint64_t w = 0;
-      std::memcpy(&w, p + 8 * i, 8);
+      std::memcpy(&w, p + static_cast<std::ptrdiff_t>(8) * i, 8);
       lane_[i] = rotl(lane_[i] + w * kP2, 31) * kP1;
     }
   }

@@ -55,7 +55,7 @@ class PoseSpace {
     // Each part padded with zeros to a multiple of 16 floats: distances then run in whole SIMD
     // packets on aligned columns.
     padded_ = (dims_ + 15) / 16 * 16;
-    feat_ = Eigen::MatrixXf::Zero(2 * padded_, n_);
+    feat_ = Eigen::MatrixXf::Zero(2 * static_cast<Eigen::Index>(padded_), n_);
     for (int s = 0; s < n_; ++s) {
       const int f = order.empty() ? s : order[static_cast<std::size_t>(s)];
       feat_.col(s).head(dims_) = (features_.positions.col(f) - mean_p_).cast<float>();

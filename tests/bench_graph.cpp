@@ -51,6 +51,7 @@ struct Run {
 // Runs argv (argv[0] is the program's path) with stdout and stderr to /dev/null.
 Run run_command(const std::vector<std::string>& args) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const auto t0 = std::chrono::steady_clock::now();

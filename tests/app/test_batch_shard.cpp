@@ -186,6 +186,7 @@ TEST(BatchShard, ParsesKOfN) {
 int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
   args.insert(args.begin(), "gmg");
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   ::testing::internal::CaptureStdout();

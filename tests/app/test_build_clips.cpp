@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 int run(std::vector<std::string> args, std::string* err = nullptr) {
   args.insert(args.begin(), "gmg");
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   ::testing::internal::CaptureStdout();

@@ -1,6 +1,7 @@
 // Test fixtures shared by the graph tests: hand-checkable features, motions and graphs.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -48,6 +49,7 @@ inline Motion line_motion(const std::vector<double>& x) {
 
 inline std::vector<double> wave(int n, double phase) {
   std::vector<double> x;
+  x.reserve(static_cast<std::size_t>(std::max(n, 0)));
   for (int i = 0; i < n; ++i) x.push_back(0.8 * std::sin(i * 0.2 + phase));
   return x;
 }

@@ -39,6 +39,7 @@ TEST(Graph, LongClipsGetTheFeaturesOfOnePoseFeaturesCall) {
   // graph_build computes features a few thousand frames at a time; the transitions (and so the
   // features they come from) must be those of the whole clip's pose_features.
   std::vector<double> x;
+  x.reserve(9000);
   for (int i = 0; i < 9000; ++i) x.push_back(0.8 * std::sin(i * 0.21) + 0.3 * std::sin(i * 0.057));
   const Motion m = line_motion(x);
   GraphParams p;

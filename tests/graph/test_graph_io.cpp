@@ -37,6 +37,7 @@ using namespace gmg::testing;
 // A graph of a few thousand frames: its arrays dwarf the small allocations of a load.
 MotionGraph long_graph() {
   std::vector<double> x;
+  x.reserve(3000);
   for (int i = 0; i < 3000; ++i) x.push_back(0.8 * std::sin(i * 0.07) + 0.3 * std::sin(i * 0.23));
   return graph_build({{"long.bvh", line_motion(x), {10, 400}, {{20, "big"}}}}, GraphParams{});
 }

@@ -92,6 +92,7 @@ std::vector<Transition> brute_analysis(const PoseFeatures& f, const std::vector<
 
 std::vector<std::tuple<int, int, double>> as_tuples(const std::vector<Transition>& edges) {
   std::vector<std::tuple<int, int, double>> out;
+  out.reserve(edges.size());
   for (const Transition& t : edges) out.emplace_back(t.from, t.to, t.weight);
   return out;
 }
