@@ -13,4 +13,7 @@ namespace gmg {
 // a frozen one (median 0), has none. Ascending.
 std::vector<int> capture_jump_frames(const PoseFeatures& f, const GraphParams& params);
 
+// The same from the positions alone (3J x frames), e.g. one clip's columns of a longer reference.
+std::vector<int> capture_jump_frames(const Eigen::Ref<const Eigen::MatrixXd>& positions, const GraphParams& params);
+
 }  // namespace gmg

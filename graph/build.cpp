@@ -6,6 +6,7 @@
 #include "graph/breaks.h"
 #include "graph/continuity.h"
 #include "graph/features.h"
+#include "graph/graph_builder.h"
 #include "graph/key_nodes.h"
 
 namespace gmg {
@@ -37,9 +38,29 @@ int check_clips(const std::vector<ClipEvents>& clips) {
   return total;
 }
 
+// The pose features of clip m into columns [offset, offset + frames) of `out`, computed a piece
+// at a time: pose_features of a whole hour holds several copies of it (forward kinematics, its
+// transpose, the velocities). A piece starts one frame early so its first velocity is the
+// clip's (v_t = p_t - p_{t-1}); the values are those of one pose_features call on the clip.
+void clip_features(const Motion& m, int offset, PoseFeatures& out) {
+  constexpr int kPiece = 4096;
+  const std::size_t joints = static_cast<std::size_t>(m.joint_count());
+  for (int first = 0; first < m.frame_count; first += kPiece) {
+    const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
+    Motion piece = motion_rest(m.skeleton, m.fps, to - from);
+    std::copy(m.rotations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.rotations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.rotations.begin());
+    std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
+    const PoseFeatures f = pose_features(piece);
+    out.positions.middleCols(offset + first, to - first) = f.positions.rightCols(to - first);
+    out.velocities.middleCols(offset + first, to - first) = f.velocities.rightCols(to - first);
+  }
+}
+
 }  // namespace
 
-MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params) {
+MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
   graph_params_validate(params);
   const int total = check_clips(clips);
   const Motion& first = clips.front().motion;
@@ -47,23 +68,32 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.params = params;
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
+  const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
+  if (clips.size() > 1) {
+    g.motion.rotations.reserve(samples);
+    g.motion.translations.reserve(samples);
+  }
   PoseFeatures features;
   const Eigen::Index dims = 3 * static_cast<Eigen::Index>(first.joint_count());
   features.positions.resize(dims, total);
   features.velocities.resize(dims, total);
-  g.graph = GraphStorage(static_cast<std::size_t>(total));
+  GraphBuilder builder(total);
 
   int offset = 0;
   for (ClipEvents& c : clips) {
     const Motion& m = c.motion;
     g.clips.push_back({c.name, offset, m.frame_count});
-    g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
-    g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
-    const PoseFeatures cf = pose_features(m);
-    features.positions.middleCols(offset, m.frame_count) = cf.positions;
-    features.velocities.middleCols(offset, m.frame_count) = cf.velocities;
-    mark_key_nodes(g.graph, offset, c, capture_jump_frames(cf, params));
+    clip_features(m, offset, features);
+    mark_key_nodes(builder.nodes(), offset, c,
+                   capture_jump_frames(features.positions.middleCols(offset, m.frame_count), params));
     offset += m.frame_count;
+    if (clips.size() == 1) {  // one clip: its samples are the graph's, no copy
+      g.motion.rotations = std::move(c.motion.rotations);
+      g.motion.translations = std::move(c.motion.translations);
+    } else {
+      g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
+      g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
+    }
     c.motion = Motion();  // release the clip's copy early
   }
 
@@ -71,16 +101,17 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   std::vector<int> run_end(static_cast<std::size_t>(total));
   int end = total - 1;
   for (int f = total - 1; f >= 0; --f) {
-    if (g.node(f).kinds & kBreakNode) end = f;
+    if (builder.node(f).kinds & kBreakNode) end = f;
     run_end[static_cast<std::size_t>(f)] = end;
   }
   for (int f = 0; f + 1 < total; ++f)
-    if (!(g.node(f).kinds & kBreakNode))
-      boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+    if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
 
-  for (const Transition& t : continuity_analysis(features, run_end, params))
-    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false},
-                    g.graph);
+  ContinuityProgress analysed;
+  if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };
+  for (const Transition& t : continuity_analysis(features, run_end, params, analysed))
+    builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  g.graph = builder.finish();
   return g;
 }
 

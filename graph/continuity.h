@@ -1,6 +1,7 @@
 // Continuity analysis (paper 4.1.2; SPEC "Edges"): which frames are close enough to jump between.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "graph/features.h"
@@ -16,12 +17,16 @@ namespace gmg {
 std::vector<double> continuity_thresholds(const PoseFeatures& f, const std::vector<int>& run_end,
                                           const GraphParams& params);
 
-// The whole analysis over frames with the given run structure: candidates d(l, r) <= theta_l
-// (r != l + 1, and |r - l| > l_pn unless exclude_near is off), pruning 1 and pruning 2 (see
-// graph/pruning.h) in left-frame order. Returns the surviving unnatural edges ordered by
-// (from, to), weighted by d(l, r). Distances are computed in blocks with a PCA lower bound,
-// never as an N x N matrix.
+// Called with (frames analysed, frames) as the analysis advances.
+using ContinuityProgress = std::function<void(int, int)>;
+
+// The whole analysis over frames with the given run structure: each frame's candidates K_l
+// (graph/neighbours.h: the nearest under its threshold, found by params.neighbours), pruning 1
+// and pruning 2 (see graph/pruning.h) in left-frame order, then at most max_transitions of the
+// survivors, the nearest (by weight, then target). Returns the unnatural edges ordered by
+// (from, to), weighted by d(l, r). With max_transitions 0 this is the paper's analysis: every
+// candidate under the threshold, both prunings. Never holds an N x N matrix.
 std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::vector<int>& run_end,
-                                            const GraphParams& params);
+                                            const GraphParams& params, const ContinuityProgress& progress = {});
 
 }  // namespace gmg

@@ -5,25 +5,26 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 
 namespace gmg {
 namespace {
 
-// The subgraph of frames [from, to) as a fresh adjacency_list (vertex i = frame from + i).
+// The subgraph of frames [from, to) (vertex i = frame from + i).
 GraphStorage subgraph(const MotionGraph& g, int from, int to) {
   if (from < 0 || to > g.frame_count() || from >= to)
     throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) +
                 " is outside the graph's 0:" + std::to_string(g.frame_count()));
-  GraphStorage sub(static_cast<std::size_t>(to - from));
-  for (int f = from; f < to; ++f) sub[static_cast<std::size_t>(f - from)] = g.node(f);
-  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
-    const int a = static_cast<int>(boost::source(*it, g.graph));
-    const int b = static_cast<int>(boost::target(*it, g.graph));
-    if (a >= from && a < to && b >= from && b < to)
-      boost::add_edge(static_cast<std::size_t>(a - from), static_cast<std::size_t>(b - from), g.graph[*it], sub);
+  GraphBuilder sub(to - from);
+  for (int f = from; f < to; ++f) {
+    sub.node(f - from) = g.node(f);
+    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g.graph); it != end; ++it) {
+      const int b = static_cast<int>(boost::target(*it, g.graph));
+      if (b >= from && b < to) sub.add_edge(f - from, b - from, g.graph[*it]);
+    }
   }
-  return sub;
+  return sub.finish();
 }
 
 std::string kind_names(std::uint8_t kinds) {

@@ -4,9 +4,10 @@
 
 namespace gmg {
 
-void mark_key_nodes(GraphStorage& graph, int offset, const ClipEvents& clip, const std::vector<int>& capture_jumps) {
+void mark_key_nodes(std::vector<NodeInfo>& nodes, int offset, const ClipEvents& clip,
+                    const std::vector<int>& capture_jumps) {
   const int frames = clip.motion.frame_count;
-  auto node = [&](int f) -> NodeInfo& { return graph[static_cast<std::size_t>(offset + f)]; };
+  auto node = [&](int f) -> NodeInfo& { return nodes.at(static_cast<std::size_t>(offset + f)); };
   for (int b : capture_jumps) node(b).kinds |= kBreakNode;
   node(frames - 1).kinds |= kBreakNode;
   for (int f : clip.onset_frames) {

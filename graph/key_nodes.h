@@ -9,10 +9,10 @@
 
 namespace gmg {
 
-// Marks the key nodes of one clip whose first frame is global frame `offset`: its onset frames,
-// its keyword frames (one label per node: the first keyword listed for a frame wins), and break
-// nodes at the capture jumps and at the clip's last frame. Throws gmg::Error naming the clip when
-// an event frame lies outside it.
-void mark_key_nodes(GraphStorage& graph, int offset, const ClipEvents& clip, const std::vector<int>& capture_jumps);
+// Marks the key nodes (nodes[f] is global frame f) of one clip whose first frame is global frame `offset`: its onset
+// frames, its keyword frames (one label per node: the first keyword listed for a frame wins), and break nodes at the
+// capture jumps and at the clip's last frame. Throws gmg::Error naming the clip when an event frame lies outside it.
+void mark_key_nodes(std::vector<NodeInfo>& nodes, int offset, const ClipEvents& clip,
+                    const std::vector<int>& capture_jumps);
 
 }  // namespace gmg

@@ -1,13 +1,18 @@
 // The gesture motion graph (paper 4.1): one node per reference frame, natural edges i -> i+1
 // inside continuous runs, unnatural edges where two frames are close enough to jump between.
 //
-// Stored as a Boost.Graph adjacency_list (vecS/vecS, so vertex descriptor == global frame
-// index). Edges are O(N * mean degree), frames O(N): memory is linear in the reference length.
+// Stored as a Boost.Graph compressed_sparse_row_graph: vertex descriptor == global frame index,
+// one array of targets and one of edge properties in source order, so a graph is a few flat
+// arrays (24 bytes an edge), moves without copying and loads at memory speed. It is immutable:
+// graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
+// they were added in: the natural edge first, then transitions by ascending target. With
+// max_transitions (graph/params.h) edges grow linearly with frames.
 //
 // The steps that build it live in files named after them: features (pose features and d_pose),
 // key_nodes (onset, keyword and break nodes), breaks (capture jumps), continuity (thresholds and
 // candidate transitions), pruning (both prunings), build (the whole construction), graph_io
-// (save/load), graph_export (DOT/GraphML), stats (counts).
+// (save/load), graph_export (DOT/GraphML), stats (counts), graph_builder (the storage from edges),
+// neighbours (candidate transitions: exact pass and approximate index).
 #pragma once
 
 #include <cstdint>
@@ -15,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 
 #include "engine/motion/motion.h"
 #include "graph/params.h"
@@ -38,7 +43,10 @@ struct EdgeInfo {
   bool natural = false;  // true for i -> i+1 inside a continuous run
 };
 
-using GraphStorage = boost::adjacency_list<boost::vecS, boost::vecS, boost::bidirectionalS, NodeInfo, EdgeInfo>;
+// Vertices are std::size_t so that boost::out_edges(std::size_t, g) deduces its template
+// arguments; edge indices are 32-bit (a graph holds fewer than 2^32 edges: graph_builder checks).
+using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, EdgeInfo, boost::no_property,
+                                                        std::size_t, std::uint32_t>;
 
 struct ClipInfo {
   std::string name;     // for reports: the motion file it came from

@@ -5,7 +5,18 @@
 
 #include <string>
 
+#include "engine/core/enum_names.h"
+
 namespace gmg {
+
+// How the candidate transitions of each frame are found (graph/neighbours.h).
+enum class NeighbourSearch {
+  Auto,         // Exact up to GraphParams::exact_frames frames, Approximate above
+  Exact,        // every pair's distance bounded, the exact candidates (time grows as frames^2)
+  Approximate,  // a k-d tree with at most ann_checks distance evaluations per frame
+};
+inline constexpr EnumName<NeighbourSearch> kNeighbourSearchNames[] = {
+    {NeighbourSearch::Auto, "auto"}, {NeighbourSearch::Exact, "exact"}, {NeighbourSearch::Approximate, "approximate"}};
 
 struct GraphParams {
   double lambda_pos = 1.0;          // weight of the joint-position term of the pose distance
@@ -20,6 +31,14 @@ struct GraphParams {
   // yet catches the teleports of a broken capture.
   double break_jump_factor = 8.0;
   std::string keywords;  // keyword lexicon file; "" = assets/keywords.txt
+  // At most this many transitions out of a frame: the nearest of those that pass both prunings
+  // among its candidates, the candidates_per_transition * max_transitions nearest frames under
+  // its threshold. So edges grow linearly with frames. 0 = no bound (the paper's analysis).
+  int max_transitions = 20;
+  int candidates_per_transition = 4;
+  NeighbourSearch neighbours = NeighbourSearch::Auto;
+  int exact_frames = 30000;  // Auto searches exactly up to this many frames
+  int ann_checks = 2000;     // Approximate: frames examined per frame at most; 0 = until exact
 };
 
 // Throws gmg::Error naming the first key out of range.

@@ -1,14 +1,26 @@
 // Benchmark: graph construction and reenactment speed and memory. Prints figures; asserts
-// nothing about time (machines are shared and noisy). Run: build/bench_graph
+// nothing about time (machines are shared and noisy). Run: build/bench_graph [--runs N] [--quick]
 //
-//  1. graph of beat2_scott/2_scott_0_1_1 (1906 frames), when ../shared/data is present;
-//  2. graph of a synthetic 427 s reference (12,810 frames, the paper's longest), 25 joints;
-//  3. reenacting a synthetic 77 s test speech from that graph (the paper's longest test clip).
+// Whole commands (the gmg binary run as a child process, wall and CPU time and peak memory from
+// wait4's rusage, min / median / max over N runs, 3 by default):
+//  1. gmg build of beat2_scott/2_scott_0_1_1 (1,906 frames), when ../shared/data is present;
+//  2. gmg build of a synthetic 427 s speaker (12,810 frames, the paper's longest reference);
+//  3. gmg build of a synthetic 1 h speaker (108,000 frames) and gmg reenact of a 77 s speech
+//     (the paper's longest test clip) from its graph (left out with --quick).
+// In memory (one run each): the graph build alone (features and transitions, clips already read)
+// at half and full 427 s, so memory growth can be seen, and reenacting 77 s from the 427 s graph.
+// The synthetic speakers are written with `gmg synth` (25 joints) into a temporary folder first.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-
-#include <sys/resource.h>
+#include <string>
+#include <vector>
 
 #include "audio/wav.h"
 #include "engine/app/pipeline.h"
@@ -31,6 +43,73 @@ double peak_rss_mb() {
   return u.ru_maxrss / 1024.0;
 }
 
+// One run of a child command: wall and CPU seconds, peak resident memory.
+struct Run {
+  double wall = 0, cpu = 0, rss_mb = 0;
+};
+
+// Runs argv (argv[0] is the program's path) with stdout and stderr to /dev/null.
+Run run_command(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) _exit(126);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage u{};
+  if (pid < 0 || wait4(pid, &status, 0, &u) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::fprintf(stderr, "bench_graph: '%s %s' failed\n", args[0].c_str(), args.size() > 1 ? args[1].c_str() : "");
+    std::exit(1);
+  }
+  Run r;
+  r.wall = seconds_since(t0);
+  r.cpu = u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
+  r.rss_mb = u.ru_maxrss / 1024.0;
+  return r;
+}
+
+struct Spread {
+  double min, median, max;
+};
+
+Spread spread(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return {v.front(), v[v.size() / 2], v.back()};
+}
+
+// Runs a command `runs` times and prints min / median / max of its wall, CPU and memory.
+void whole_command(const char* what, const std::vector<std::string>& args, int runs) {
+  std::vector<double> wall, cpu, rss;
+  for (int i = 0; i < runs; ++i) {
+    const Run r = run_command(args);
+    wall.push_back(r.wall);
+    cpu.push_back(r.cpu);
+    rss.push_back(r.rss_mb);
+  }
+  const Spread w = spread(wall), c = spread(cpu), m = spread(rss);
+  std::printf(
+      "%s (%d runs, min / median / max):\n  wall %.2f / %.2f / %.2f s, CPU %.2f / %.2f / %.2f s, "
+      "peak RSS %.0f / %.0f / %.0f MiB\n",
+      what, runs, w.min, w.median, w.max, c.min, c.median, c.max, m.min, m.median, m.max);
+  std::fflush(stdout);
+}
+
+// `gmg build` of a clip into `graph`, timed; then the graph's counts (one more, untimed build is
+// not needed: the last run's file is there).
+void bench_build(const char* what, const std::string& stem, const std::string& transcript, const std::string& graph,
+                 int runs) {
+  whole_command(what,
+                {GMG_BINARY, "build", "--motion", stem + ".bvh", "--audio", stem + ".wav", "--transcript", transcript,
+                 "-o", graph, "--progress", "none"},
+                runs);
+}
+
 void print_graph(const char* what, const MotionGraph& g, double secs) {
   const GraphStats s = graph_stats(g);
   std::printf(
@@ -38,22 +117,6 @@ void print_graph(const char* what, const MotionGraph& g, double secs) {
       "peak RSS so far %.1f MB\n",
       what, s.frames, g.motion.joint_count(), secs, s.unnatural_edges, s.onset_nodes, s.keyword_nodes, s.break_nodes,
       peak_rss_mb());
-}
-
-// Graph construction alone (features + continuity analysis), from clips already in memory.
-MotionGraph timed_build(const SynthClip& clip, const char* what, const Config& cfg) {
-  ClipEvents c;
-  c.name = what;
-  c.motion = clip.motion;
-  const text::Lexicon lexicon = lexicon_for(cfg.graph);
-  const SpeechEvents ev =
-      speech_events(clip.audio, &clip.words, what, clip.motion.fps, clip.motion.frame_count, cfg.graph, lexicon);
-  c.onset_frames = ev.onset_frames;
-  c.keyword_frames = ev.keyword_frames;
-  const auto t0 = std::chrono::steady_clock::now();
-  MotionGraph g = graph_build({c}, cfg.graph);
-  print_graph(what, g, seconds_since(t0));
-  return g;
 }
 
 // A 25-joint (GENEA-sized) synthetic speaker of the given length.
@@ -65,38 +128,27 @@ SynthClip synthetic_clip(double seconds, std::uint64_t seed) {
   return synth_speaker(spec);
 }
 
-// Builds and reports the graph of a synthetic reference, with the growth of peak memory.
-MotionGraph synthetic_graph(double seconds, const Config& cfg) {
-  const SynthClip clip = synthetic_clip(seconds, 3);
+// Graph construction alone (features + continuity analysis), from a clip already in memory.
+MotionGraph timed_build(const SynthClip& clip, const char* what, const Config& cfg) {
+  ClipEvents c;
+  c.name = what;
+  c.motion = clip.motion;
+  const text::Lexicon lexicon = lexicon_for(cfg.graph);
+  const SpeechEvents ev =
+      speech_events(clip.audio, &clip.words, what, clip.motion.fps, clip.motion.frame_count, cfg.graph, lexicon);
+  c.onset_frames = ev.onset_frames;
+  c.keyword_frames = ev.keyword_frames;
   const double before = peak_rss_mb();
-  char name[64];
-  std::snprintf(name, sizeof name, "synthetic %.1f s", seconds);
-  MotionGraph g = timed_build(clip, name, cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  MotionGraph g = graph_build({c}, cfg.graph);
+  print_graph(what, g, seconds_since(t0));
   std::printf("  peak RSS grew by %.1f MB during the build\n", peak_rss_mb() - before);
   return g;
 }
 
-}  // namespace
-
-int main() {
-  const Config cfg;
-  const std::string data = gmg::testing::shared_data_dir();
-  if (!data.empty()) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const MotionGraph g = graph_build_from_files(
-        {{data + "/beat2_scott/2_scott_0_1_1.bvh",
-          {data + "/beat2_scott/2_scott_0_1_1.wav", data + "/beat2_scott/2_scott_0_1_1.TextGrid"}}},
-        cfg);
-    print_graph("2_scott_0_1_1 (including BVH, WAV, TextGrid reading and onset detection)", g, seconds_since(t0));
-  } else {
-    std::printf("../shared/data is absent: skipping the 2_scott_0_1_1 figure\n");
-  }
-
-  // Memory must grow linearly with frames: a half-length reference first (so its peak is
-  // already counted when the full one is measured), then the full one.
-  synthetic_graph(213.5, cfg);
-  const MotionGraph g = synthetic_graph(427.0, cfg);
-
+void in_memory_figures(const Config& cfg) {
+  timed_build(synthetic_clip(213.5, 3), "in memory, synthetic 213.5 s", cfg);
+  const MotionGraph g = timed_build(synthetic_clip(427.0, 3), "in memory, synthetic 427 s", cfg);
   const SynthClip speech = synthetic_clip(77.0, 4);
   const text::Lexicon lexicon = lexicon_for(cfg.graph);
   auto t0 = std::chrono::steady_clock::now();
@@ -106,9 +158,41 @@ int main() {
   const Reenactment r = reenact_events(g, ev, cfg);
   const double search = seconds_since(t0);
   std::printf(
-      "reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
+      "in memory, reenact 77 s (%d frames, %zu subsequences) from the 427 s graph: speech analysis %.3f s, "
       "search + blending %.3f s, total %.3f s (one core)\n",
       ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
-  std::printf("  fallbacks: %s, failures %d\n", r.report["totals"]["fallbacks"].dump().c_str(), r.plan.failure_count());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 3;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+  }
+  const gmg::testing::TempDir dir;
+  const std::string d = dir.path().string();
+  const std::string data = gmg::testing::shared_data_dir();
+  if (!data.empty()) {
+    bench_build("gmg build 2_scott_0_1_1 (1,906 frames)", data + "/beat2_scott/2_scott_0_1_1",
+                data + "/beat2_scott/2_scott_0_1_1.TextGrid", d + "/beat2.gmg", runs);
+  } else {
+    std::printf("../shared/data is absent: skipping the 2_scott_0_1_1 figure\n");
+  }
+  // The same speakers as `gmg synth --joints 25 --seed 3 --duration S` (and seed 4 for the speech).
+  synth_write(synthetic_clip(427.0, 3), d, "s427");
+  bench_build("gmg build synthetic 427 s (12,810 frames)", d + "/s427", d + "/s427.tsv", d + "/s427.gmg", runs);
+  if (!quick) {
+    synth_write(synthetic_clip(3600.0, 3), d, "s3600");
+    bench_build("gmg build synthetic 1 h (108,000 frames)", d + "/s3600", d + "/s3600.tsv", d + "/s3600.gmg", runs);
+    synth_write(synthetic_clip(77.0, 4), d, "t77");
+    whole_command("gmg reenact 77 s from the 1 h graph",
+                  {GMG_BINARY, "reenact", "--graph", d + "/s3600.gmg", "--audio", d + "/t77.wav", "--transcript",
+                   d + "/t77.tsv", "-o", d + "/t77.bvh"},
+                  runs);
+  }
+  in_memory_figures(Config{});
   return 0;
 }

@@ -60,8 +60,10 @@ struct Accessor {
 };
 
 // The text of a number key's range, added to its help ("[1 to 1000]").
+// Whole numbers in full ("100000", not "1e+05").
 template <typename T>
 std::string range_text(T lo, T hi) {
+  if constexpr (std::is_integral_v<T>) return " [" + std::to_string(lo) + " to " + std::to_string(hi) + "]";
   return " [" + format_number(static_cast<double>(lo)) + " to " + format_number(static_cast<double>(hi)) + "]";
 }
 
@@ -138,6 +140,16 @@ const std::vector<Accessor>& accessors() {
                  &Config::graph, &GraphParams::break_jump_factor),
       string_key("keywords", "keyword lexicon file (empty: assets/keywords.txt)", &Config::graph,
                  &GraphParams::keywords),
+      int_key("max_transitions", "at most this many transitions out of a frame, the nearest (0: no bound)",
+              &Config::graph, &GraphParams::max_transitions, 0, 100000),
+      int_key("candidates_per_transition", "candidates looked at per transition kept (times max_transitions)",
+              &Config::graph, &GraphParams::candidates_per_transition, 1, 1000),
+      enum_key("neighbours", "candidate search: auto (exact up to exact_frames frames), exact or approximate",
+               &Config::graph, &GraphParams::neighbours, kNeighbourSearchNames),
+      int_key("exact_frames", "auto searches candidates exactly up to this many frames", &Config::graph,
+              &GraphParams::exact_frames, 0, 100000000),
+      int_key("ann_checks", "approximate search: distance evaluations per frame at most (0: until exact)",
+              &Config::graph, &GraphParams::ann_checks, 0, 100000000),
       int_key("l_npaths", "beam width and number of start nodes", &Config::search, &SearchParams::l_npaths, 1, 1000),
       number_key("lambda_w", "weight of edge weights in the path cost", &Config::search, &SearchParams::lambda_w),
       number_key("lambda_len", "weight of the length mismatch in the path cost", &Config::search,

@@ -3,8 +3,12 @@
 #include "engine/app/report.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <random>
+#include <thread>
 
 #include "audio/audio_file.h"
 #include "audio/onset.h"
@@ -58,25 +62,55 @@ SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_coun
   return speech_events(sound, &words, files.transcript, fps, frame_count, params, lexicon);
 }
 
-MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config) {
+namespace {
+
+ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon) {
+  ClipEvents in;
+  in.name = c.motion;
+  in.motion = motion_read(c.motion, c.skeleton);
+  motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
+                         config.cleanup.smooth_order, c.motion);
+  const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
+  in.onset_frames = ev.onset_frames;
+  in.keyword_frames = ev.keyword_frames;
+  return in;
+}
+
+}  // namespace
+
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
+                                   const BuildProgress& progress, int jobs) {
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
-  std::vector<ClipEvents> inputs;
-  for (const ReferenceFiles& c : clips) {
-    naming_memory_errors(c.motion, "reading the reference clip", [&] {
-      ClipEvents in;
-      in.name = c.motion;
-      in.motion = motion_read(c.motion, c.skeleton);
-      motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
-                             config.cleanup.smooth_order, c.motion);
-      const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
-      in.onset_frames = ev.onset_frames;
-      in.keyword_frames = ev.keyword_frames;
-      inputs.push_back(std::move(in));
-    });
-  }
+  std::vector<ClipEvents> inputs(clips.size());
+  std::vector<std::exception_ptr> errors(clips.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex m;
+  long done = 0;
+  // Clips are independent: read them on several threads, each into its own slot.
+  auto read = [&] {
+    for (std::size_t i = next++; i < clips.size(); i = next++) {
+      try {
+        inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
+                                         [&] { return read_reference(clips[i], config, lexicon); });
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> lock(m);
+      if (progress) progress("read", ++done, static_cast<long>(clips.size()));
+    }
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t threads = std::min<std::size_t>(clips.size(), jobs > 0 ? static_cast<std::size_t>(jobs) : cores);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(read);
+  read();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
-  return naming_memory_errors(what, "building the graph", [&] { return graph_build(std::move(inputs), config.graph); });
+  return naming_memory_errors(what, "building the graph",
+                              [&] { return graph_build(std::move(inputs), config.graph, progress); });
 }
 
 void check_output_size(int frames, const Skeleton& skeleton, const std::string& name) {

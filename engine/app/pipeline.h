@@ -57,8 +57,10 @@ struct ReferenceFiles {
   std::string skeleton{};  // BVH skeleton template of an .npz motion (engine/motion/npz.h); "" = none
 };
 
-// Reads, analyses and joins the clips into one graph.
-MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config);
+// Reads, analyses and joins the clips into one graph, in the order given. Clips are read by up
+// to `jobs` threads (0: every core); a problem names the first clip (in order) that has one.
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
+                                   const BuildProgress& progress = {}, int jobs = 1);
 
 struct Reenactment {
   Motion motion;  // exactly events.total_frames frames, in the graph's skeleton

@@ -233,8 +233,9 @@ TEST(ConfigKeys, EveryWholeNumberKeyHasADocumentedRange) {
                     " to " + std::to_string(hi) + ")");
     ++checked;
   }
-  EXPECT_EQ(checked, 10);  // l_cn, l_pn, l_npaths, l_feat, retries, merge_below, ignore_rounds, l_blend,
-                           // smooth_window, smooth_order
+  // l_cn, l_pn, max_transitions, candidates_per_transition, exact_frames, ann_checks, l_npaths, l_feat,
+  // retries, merge_below, ignore_rounds, l_blend, smooth_window, smooth_order
+  EXPECT_EQ(checked, 14);
   Config c;
   EXPECT_EQ(error_of([&] { config_set(c, "l_npaths", "1000000000"); }),
             "config key 'l_npaths': 1000000000 is out of range (1 to 1000)");

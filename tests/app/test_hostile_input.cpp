@@ -28,6 +28,7 @@
 #include "engine/app/pipeline.h"
 #include "engine/app/synth/synth.h"
 #include "engine/core/files.h"
+#include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 #include "tests/test_support.h"
 
@@ -193,9 +194,10 @@ MotionGraph tiny_graph() {
   sk.joints = {root, head};
   g.motion = motion_rest(sk, 30.0, 8);
   g.clips = {{"tiny.bvh", 0, 8}};
-  g.graph = GraphStorage(8);
-  for (std::size_t f = 0; f + 1 < 8; ++f) boost::add_edge(f, f + 1, EdgeInfo{0.0, true}, g.graph);
-  g.graph[7].kinds = kBreakNode;
+  GraphBuilder b(8);
+  for (int f = 0; f + 1 < 8; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0, true});
+  b.node(7).kinds = kBreakNode;
+  g.graph = b.finish();
   return g;
 }
 

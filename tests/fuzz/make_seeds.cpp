@@ -18,6 +18,7 @@
 #include "engine/app/synth/synth.h"
 #include "engine/core/files.h"
 #include "engine/motion/bvh.h"
+#include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 
 namespace fs = std::filesystem;
@@ -144,15 +145,16 @@ gmg::MotionGraph tiny_graph() {
   gmg::MotionGraph g;
   g.motion = gmg::motion_rest(sk, 30.0, 10);
   g.clips = {{"a.bvh", 0, 6}, {"b.bvh", 6, 4}};
-  g.graph = gmg::GraphStorage(10);
-  for (std::size_t f = 0; f + 1 < 10; ++f)
-    if (f != 5) boost::add_edge(f, f + 1, gmg::EdgeInfo{0.0, true}, g.graph);
-  boost::add_edge(2, 8, gmg::EdgeInfo{0.25, false}, g.graph);
-  g.graph[1].kinds = gmg::kOnsetNode;
-  g.graph[3].kinds = gmg::kKeywordNode;
-  g.graph[3].keyword = "big";
-  g.graph[5].kinds = gmg::kBreakNode;
-  g.graph[9].kinds = gmg::kBreakNode;
+  gmg::GraphBuilder b(10);
+  for (int f = 0; f + 1 < 10; ++f)
+    if (f != 5) b.add_edge(f, f + 1, gmg::EdgeInfo{0.0, true});
+  b.add_edge(2, 8, gmg::EdgeInfo{0.25, false});
+  b.node(1).kinds = gmg::kOnsetNode;
+  b.node(3).kinds = gmg::kKeywordNode;
+  b.node(3).keyword = "big";
+  b.node(5).kinds = gmg::kBreakNode;
+  b.node(9).kinds = gmg::kBreakNode;
+  g.graph = b.finish();
   return g;
 }
 

@@ -1,13 +1,16 @@
 // Test fixtures shared by the graph tests: hand-checkable features, motions and graphs.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include <boost/range/iterator_range.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "graph/build.h"
 #include "graph/features.h"
+#include "graph/graph_builder.h"
 
 namespace gmg::testing {
 
@@ -48,6 +51,7 @@ inline Motion line_motion(const std::vector<double>& x) {
 
 inline std::vector<double> wave(int n, double phase) {
   std::vector<double> x;
+  x.reserve(static_cast<std::size_t>(std::max(n, 0)));
   for (int i = 0; i < n; ++i) x.push_back(0.8 * std::sin(i * 0.2 + phase));
   return x;
 }
@@ -58,6 +62,20 @@ inline MotionGraph two_clip_graph() {
   ClipEvents a{"a.bvh", line_motion(wave(100, 0.0)), {10, 40, 70}, {{20, "big"}, {60, "this"}}};
   ClipEvents b{"b.bvh", line_motion(wave(80, 1.0)), {5, 30}, {{50, "big"}}};
   return graph_build({a, b}, GraphParams{});
+}
+
+// The storage of g with one more edge, out of `from` after its own (storage is immutable once
+// built: tests that damage a graph rebuild it).
+inline GraphStorage with_edge(const GraphStorage& g, int from, int to, const EdgeInfo& extra) {
+  const int n = static_cast<int>(boost::num_vertices(g));
+  GraphBuilder b(n);
+  for (int f = 0; f < n; ++f) {
+    b.node(f) = g[static_cast<std::size_t>(f)];
+    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<std::size_t>(f), g)))
+      b.add_edge(f, static_cast<int>(boost::target(e, g)), g[e]);
+    if (f == from) b.add_edge(from, to, extra);
+  }
+  return b.finish();
 }
 
 }  // namespace gmg::testing

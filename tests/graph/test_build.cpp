@@ -1,9 +1,13 @@
 // The whole graph construction: clips joined, breaks, natural and unnatural edges.
+#include <cmath>
+#include <tuple>
+
 #include <gtest/gtest.h>
 
 #include "engine/app/pipeline.h"
 #include "engine/core/error.h"
 #include "graph/build.h"
+#include "graph/continuity.h"
 #include "graph/stats.h"
 #include "tests/graph/fixtures.h"
 #include "tests/test_support.h"
@@ -22,13 +26,34 @@ TEST(Graph, BuildJoinsClipsWithBreaksAndNoNaturalEdgeAcross) {
   EXPECT_TRUE(g.node(105).kinds & kOnsetNode);  // clip b's onset 5, offset 100
   EXPECT_EQ(g.node(150).keyword, "big");
   EXPECT_TRUE(g.node(20).kinds & kKeywordNode);
-  for (auto [it, end] = boost::out_edges(99, g.graph); it != end; ++it) EXPECT_FALSE(g.graph[*it].natural);
+  for (auto [it, end] = boost::out_edges(std::size_t{99}, g.graph); it != end; ++it) EXPECT_FALSE(g.graph[*it].natural);
   const GraphStats s = graph_stats(g);
   EXPECT_EQ(s.onset_nodes, 5);
   EXPECT_EQ(s.keyword_nodes, 3);
   EXPECT_EQ(s.break_nodes, 2);
   EXPECT_EQ(s.natural_edges, 178);
   EXPECT_GT(s.unnatural_edges, 0);
+}
+
+TEST(Graph, LongClipsGetTheFeaturesOfOnePoseFeaturesCall) {
+  // graph_build computes features a few thousand frames at a time; the transitions (and so the
+  // features they come from) must be those of the whole clip's pose_features.
+  std::vector<double> x;
+  x.reserve(9000);
+  for (int i = 0; i < 9000; ++i) x.push_back(0.8 * std::sin(i * 0.21) + 0.3 * std::sin(i * 0.057));
+  const Motion m = line_motion(x);
+  GraphParams p;
+  p.max_transitions = 3;
+  const MotionGraph g = graph_build({{"long.bvh", m, {}, {}}}, p);
+  std::vector<std::tuple<int, int, double>> built, direct;
+  for (int f = 0; f < g.frame_count(); ++f)
+    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g.graph); it != end; ++it)
+      if (!g.graph[*it].natural)
+        built.emplace_back(f, static_cast<int>(boost::target(*it, g.graph)), g.graph[*it].weight);
+  for (const Transition& t : continuity_analysis(pose_features(m), one_run(9000), p))
+    direct.emplace_back(t.from, t.to, t.weight);
+  ASSERT_GT(direct.size(), 1000u);
+  EXPECT_EQ(built, direct);
 }
 
 TEST(Graph, SkeletonMismatchIsAnError) {

@@ -137,6 +137,7 @@ TEST(Continuity, MatchesBruteForceCandidatesOnRandomWalk) {
   GraphParams p;
   p.l_pn = 1;
   p.exclude_near = true;
+  p.max_transitions = 0;  // every candidate: the paper's analysis
   const std::vector<Transition> edges = continuity_analysis(f, one_run(n), p);
   auto theta_of = [&](int l) {
     double theta = 0.0;

@@ -13,7 +13,7 @@ namespace {
 using namespace gmg::testing;
 
 TEST(KeyNodes, MarksEventsAtTheClipsOffset) {
-  GraphStorage g(20);
+  std::vector<NodeInfo> g(20);
   ClipEvents clip{"c.bvh", line_motion(wave(10, 0.0)), {0, 3}, {{3, "big"}, {3, "this"}, {7, "not"}}};
   mark_key_nodes(g, 5, clip, {4});
   EXPECT_EQ(g[5].kinds, kOnsetNode);
@@ -29,7 +29,7 @@ TEST(KeyNodes, MarksEventsAtTheClipsOffset) {
 }
 
 TEST(KeyNodes, EventOutsideTheClipNamesIt) {
-  GraphStorage g(20);
+  std::vector<NodeInfo> g(20);
   ClipEvents clip{"c.bvh", line_motion(wave(10, 0.0)), {10}, {}};
   try {
     mark_key_nodes(g, 0, clip, {});

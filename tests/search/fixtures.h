@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "graph/graph_builder.h"
 #include "graph/motion_graph.h"
 #include "search/planner.h"
 
@@ -26,18 +27,16 @@ inline MotionGraph chain_graph(int n, const std::vector<int>& onsets,
   g.motion = motion_rest(sk, 30.0, n);
   for (int f = 0; f < n; ++f) g.motion.translations[static_cast<std::size_t>(f)] = glm::dvec3(f, 0, 0);
   g.clips = {{"chain", 0, n}};
-  g.graph = GraphStorage(static_cast<std::size_t>(n));
-  for (int f : onsets) g.graph[static_cast<std::size_t>(f)].kinds |= kOnsetNode;
+  GraphBuilder b(n);
+  for (int f : onsets) b.node(f).kinds |= kOnsetNode;
   for (const auto& [f, w] : keywords) {
-    g.graph[static_cast<std::size_t>(f)].kinds |= kKeywordNode;
-    g.graph[static_cast<std::size_t>(f)].keyword = w;
+    b.node(f).kinds |= kKeywordNode;
+    b.node(f).keyword = w;
   }
-  g.graph[static_cast<std::size_t>(n - 1)].kinds |= kBreakNode;
-  for (int f = 0; f + 1 < n; ++f)
-    boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
-  for (const Transition& t : jumps)
-    boost::add_edge(static_cast<std::size_t>(t.from), static_cast<std::size_t>(t.to), EdgeInfo{t.weight, false},
-                    g.graph);
+  b.node(n - 1).kinds |= kBreakNode;
+  for (int f = 0; f + 1 < n; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0, true});
+  for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  g.graph = b.finish();
   return g;
 }
 

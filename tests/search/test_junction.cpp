@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/quaternion.hpp>
 
+#include "graph/graph_builder.h"
 #include "search/junction.h"
 #include "search/planner.h"
 
@@ -14,7 +15,7 @@ namespace {
 // A root and a hand 10 units away; the root turns about Z by angle[f], so the hand's pose depends
 // on the frame. Natural edges everywhere except out of the break nodes; no unnatural edges.
 MotionGraph posed_graph(const std::vector<double>& angle, const std::vector<int>& onsets,
-                        const std::vector<int>& breaks) {
+                        const std::vector<int>& breaks, const std::vector<Transition>& jumps = {}) {
   Skeleton sk;
   Joint root;
   root.name = "root";
@@ -30,12 +31,13 @@ MotionGraph posed_graph(const std::vector<double>& angle, const std::vector<int>
   for (int f = 0; f < n; ++f)
     g.motion.rotations[g.motion.index(f, 0)] = glm::angleAxis(angle[static_cast<std::size_t>(f)], glm::dvec3(0, 0, 1));
   g.clips = {{"posed", 0, n}};
-  g.graph = GraphStorage(static_cast<std::size_t>(n));
-  for (int f : onsets) g.graph[static_cast<std::size_t>(f)].kinds |= kOnsetNode;
-  for (int f : breaks) g.graph[static_cast<std::size_t>(f)].kinds |= kBreakNode;
+  GraphBuilder b(n);
+  for (int f : onsets) b.node(f).kinds |= kOnsetNode;
+  for (int f : breaks) b.node(f).kinds |= kBreakNode;
   for (int f = 0; f + 1 < n; ++f)
-    if (!(g.node(f).kinds & kBreakNode))
-      boost::add_edge(static_cast<std::size_t>(f), static_cast<std::size_t>(f + 1), EdgeInfo{0.0, true}, g.graph);
+    if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0, true});
+  for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  g.graph = b.finish();
   return g;
 }
 
@@ -73,9 +75,7 @@ TEST(Junction, PlannerPicksTheStartNearThePreviousEnd) {
 TEST(Junction, CostIsThePoseDistanceOverTheMeanTransitionWeight) {
   std::vector<double> angle(40, 0.0);
   for (int f = 0; f < 40; ++f) angle[static_cast<std::size_t>(f)] = 0.05 * f;
-  MotionGraph g = posed_graph(angle, {}, {39});
-  boost::add_edge(5, 30, EdgeInfo{2.0, false}, g.graph);
-  boost::add_edge(6, 20, EdgeInfo{4.0, false}, g.graph);
+  const MotionGraph g = posed_graph(angle, {}, {39}, {{5, 30, 2.0}, {6, 20, 4.0}});
   JunctionCost j(g);
   EXPECT_DOUBLE_EQ(j.normaliser(), 3.0);
   // Frames 10 and 20: the hand 10 away at angles 0.5 and 1.0 (chord 2 * 10 * sin(0.25)), both moving

@@ -25,11 +25,29 @@ BatchPairing check_options(const BatchOptions& options) {
     throw Error("batch: --pairing manifest needs --manifest pairs.csv");
   if (pairing == BatchPairing::Random && !options.pairs_manifest.empty())
     throw Error("batch: --manifest " + options.pairs_manifest + " given with --pairing random");
-  if (options.pool_dirs.empty() && options.pool_manifests.empty())
-    throw Error("batch: no pool of reference clips given (--pool DIR or --pool-manifest CSV)");
+  const bool pool = !options.pool_dirs.empty() || !options.pool_manifests.empty();
+  if (!pool && options.graph.empty())
+    throw Error("batch: no pool of reference clips given (--pool DIR or --pool-manifest CSV, or --graph G.gmg)");
+  if (pool && !options.graph.empty()) throw Error("batch: give either --graph or a pool (--pool, --pool-manifest)");
   if (options.test_dirs.empty() && options.test_manifests.empty())
     throw Error("batch: no test clips given (--tests DIR or --test-manifest CSV)");
+  if (options.shard &&
+      (options.shard->count < 1 || options.shard->index < 1 || options.shard->index > options.shard->count))
+    throw Error("batch: --shard needs K/N with 1 <= K <= N");
   return pairing;
+}
+
+// The test clips of one part (see batch.h "Shards"): clip i of the stem-sorted list belongs to
+// part i % N + 1. Applied after the pairing draw, so a part pairs as the whole batch does.
+Pairing shard_of(const Pairing& all, const BatchShard& shard) {
+  Pairing part;
+  for (std::size_t i = 0; i < all.test_stems.size(); ++i) {
+    if (static_cast<int>(i % static_cast<std::size_t>(shard.count)) != shard.index - 1) continue;
+    part.test_stems.push_back(all.test_stems[i]);
+    part.references.push_back(all.references[i]);
+    part.errors.push_back(all.errors[i]);
+  }
+  return part;
 }
 
 // Every clip's config: the batch's seed (when given) replaces config.seed.
@@ -117,6 +135,8 @@ std::size_t announce(const BatchSummary& summary, const Clips& clips, BatchPairi
   for (const std::string& n : clips.notes) progress.line("batch: note: " + n);
   std::ostringstream os;
   os << "batch: " << total << " test clips";
+  if (summary.shard)
+    os << " (part " << summary.shard->index << "/" << summary.shard->count << " of " << summary.batch_clips << ")";
   if (to_do != total) os << " (" << total - to_do << " skipped or unpaired)";
   os << ", pool of " << pool_size << " reference clips";
   if (summary.blacklisted) os << " (" << summary.blacklisted << " blacklisted)";
@@ -159,7 +179,10 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
                              run_record(clip_config.seed, pairing, pool_stems, clip_config), clips.tests,
                              options.force);
 
-  const Pairing pairs = pair_tests(options, pairing, clips, blacklist, pool_stems, clip_config.seed);
+  const Pairing all_pairs = pair_tests(options, pairing, clips, blacklist, pool_stems, clip_config.seed);
+  summary.batch_clips = static_cast<int>(all_pairs.test_stems.size());
+  summary.shard = options.shard;
+  const Pairing pairs = options.shard ? shard_of(all_pairs, *options.shard) : all_pairs;
   summary.clips = initial_results(pairs, clips.tests, out_dir, options.force);
   summary.references = reference_results(clips.pool, pool_stems, summary.clips);
   write_pairs_csv(out_dir, summary.clips);  // first, so the pairing is on record even if the run is interrupted

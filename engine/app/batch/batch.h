@@ -23,6 +23,10 @@
 //   folder. Lines starting with '#' and blank lines are skipped; fields may be "quoted".
 //   Missing files are not a setup error: they fail the clips that need them.
 //
+// - A built graph (`--graph G.gmg`, instead of a pool): every test clip is reenacted from it. It
+//   is loaded once and shared by all workers (a graph of hours of reference, built with
+//   `gmg build --clips`, is not copied per clip); its stem is the clips' reference in pairs.csv.
+//
 // Pairing
 // - random (default): pool minus blacklist, sorted by stem. Test clips are taken in stem order
 //   and each draws `candidates[rng() % candidates.size()]` from one std::mt19937_64(seed), where
@@ -62,6 +66,18 @@
 //   ("../escaped") is a setup error naming the manifest line.
 // - A clip that cannot be made (unreadable input, broken reference, ...) fails with its error
 //   text in the summary; the others complete.
+//
+// Shards (for a cluster: scripts/slurm_batch.sh, or GNU parallel)
+// - `--shard K/N` runs part K of N: test clip i of the stem-sorted list (from 0) belongs to part
+//   i % N + 1. The pairing is drawn over all test clips before the split, so a part pairs and
+//   writes exactly what one run of the whole batch would for its clips (the union of the parts'
+//   BVH and JSON outputs is byte-identical to a single run's). A part's OUTDIR holds its clips
+//   only: outputs, pairs.csv rows, and a summary.json that records "shard": {"index": K,
+//   "count": N, "batch_clips": all test clips}. Give each part its own OUTDIR.
+// - `--merge DIR... -o OUTDIR` joins the parts' summaries into OUTDIR/summary.csv, summary.json
+//   and pairs.csv (clips by test stem, each clip's output path where its part wrote it). It
+//   needs every part 1..N of one batch exactly once (same N, seed, pairing and clip count) and
+//   no test clip in two parts; otherwise it stops with an error naming the folders.
 #pragma once
 
 #include <atomic>
@@ -114,8 +130,17 @@ inline constexpr EnumName<BatchClipStatus> kBatchClipStatusNames[] = {{BatchClip
                                                                       {BatchClipStatus::Skipped, "skipped"},
                                                                       {BatchClipStatus::Cancelled, "cancelled"}};
 
+// Part `index` (1-based) of `count` parts of a batch (see "Shards" above).
+struct BatchShard {
+  int index = 1, count = 1;
+};
+
+// "K/N" with 1 <= K <= N; gmg::Error otherwise.
+BatchShard parse_batch_shard(const std::string& text);
+
 struct BatchOptions {
   std::vector<std::string> pool_dirs;         // --pool DIR (repeatable)
+  std::string graph;                          // --graph G.gmg: every test clip from this graph (no pool)
   std::vector<std::string> pool_manifests;    // --pool-manifest CSV (repeatable)
   std::vector<std::string> test_dirs;         // --tests DIR (repeatable)
   std::vector<std::string> test_manifests;    // --test-manifest CSV (repeatable)
@@ -128,6 +153,7 @@ struct BatchOptions {
   bool force = false;                         // --force: redo clips whose output exists
   bool reports = false;                       // --reports: also write OUTDIR/<stem>.json
   BatchProgress progress = BatchProgress::Auto;
+  std::optional<BatchShard> shard;  // --shard K/N: only that part's test clips
   // When set and it becomes true, no further clip or graph build starts; clips under way finish,
   // the summary is written (remaining clips "cancelled") and BatchSummary::interrupted is true.
   const std::atomic<bool>* cancel = nullptr;
@@ -159,9 +185,12 @@ struct BatchSummary {
   int blacklisted = 0;  // pool clips removed by the blacklist
   int jobs = 1;         // worker threads used
   std::uint64_t seed = 0;
-  double seconds = 0;        // wall time of the whole run
-  double graph_seconds = 0;  // sum of graph build times
-  bool interrupted = false;  // options.cancel was raised
+  double seconds = 0;               // wall time of the whole run
+  double graph_seconds = 0;         // sum of graph build times
+  bool interrupted = false;         // options.cancel was raised
+  std::optional<BatchShard> shard;  // the part this run made (clips holds its clips only)
+  int batch_clips = 0;              // test clips of the whole batch (every part)
+  std::vector<std::string> parts;   // batch_merge: the part folders joined
   // Files found but not used or unusable (a pool BVH without audio, a broken symbolic link), as
   // the first progress lines said them.
   std::vector<std::string> notes;
@@ -172,6 +201,12 @@ struct BatchSummary {
 // blacklist, a bad option, an unusable output folder); per-clip problems are reported in the
 // summary instead.
 BatchSummary batch_run(const BatchOptions& options, const Config& config, std::ostream& progress);
+
+// Joins the summaries of parts made with --shard (each folder's summary.json) into out_dir's
+// summary.csv, summary.json and pairs.csv (see "Shards"); returns the joined summary. Throws
+// gmg::Error naming the folders when a part is missing, given twice, from another batch, or
+// shares a test clip with another.
+BatchSummary batch_merge(const std::vector<std::string>& part_dirs, const std::string& out_dir, std::ostream& progress);
 
 // The pairing draw (exposed for tests): for each test stem in the given order, one draw from
 // `pool` (sorted, blacklist already removed) without the test's own stem; "" when no candidate is

@@ -230,10 +230,23 @@ void add_test_folder(const std::string& dir, Clips& clips) {
 
 }  // namespace
 
+ClipMap collect_reference_clips(const std::vector<std::string>& dirs, const std::vector<std::string>& manifests,
+                                std::vector<std::string>& notes) {
+  Clips clips;
+  for (const std::string& dir : dirs) add_pool_folder(dir, clips);
+  for (const std::string& m : manifests) read_clip_manifest(m, true, clips.pool);
+  notes.insert(notes.end(), clips.notes.begin(), clips.notes.end());
+  return clips.pool;
+}
+
 Clips collect_clips(const BatchOptions& options) {
   Clips clips;
-  for (const std::string& dir : options.pool_dirs) add_pool_folder(dir, clips);
-  for (const std::string& m : options.pool_manifests) read_clip_manifest(m, true, clips.pool);
+  if (options.graph.empty()) {
+    clips.pool = collect_reference_clips(options.pool_dirs, options.pool_manifests, clips.notes);
+  } else {
+    const std::string stem = fs::path(options.graph).stem().string();
+    clips.pool.emplace(stem, ClipFiles{stem, options.graph, "", "", "--graph"});
+  }
   for (const std::string& dir : options.test_dirs) add_test_folder(dir, clips);
   for (const std::string& m : options.test_manifests) read_clip_manifest(m, false, clips.tests);
   if (clips.pool.empty()) throw Error("batch: the pool holds no reference clip (a BVH and a WAV with the same stem)");

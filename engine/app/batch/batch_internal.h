@@ -8,6 +8,7 @@
 //   batch_progress.cpp  the progress display
 //   batch_schedule.cpp  the workers: graph builds shared by the clips that drew them
 //   batch_summary.cpp   summary.csv/summary.json, and the previous run's figures
+//   batch_merge.cpp     joining the summaries of parts made with --shard
 //   batch_command.cpp   the `batch` subcommand
 #pragma once
 
@@ -51,6 +52,12 @@ struct Clips {
   ClipMap pool, tests;
   std::vector<std::string> notes;  // files found but not used (a BVH without WAV in a pool), broken links
 };
+
+// The reference clips (BVH + WAV + optional transcript) of clip folders and manifests, as a batch
+// pool reads them (see batch.h); files found but not used are described in `notes`. Also what
+// `gmg build --clips` reads.
+ClipMap collect_reference_clips(const std::vector<std::string>& dirs, const std::vector<std::string>& manifests,
+                                std::vector<std::string>& notes);
 
 // Every pool and test clip of the options' folders and manifests (see batch.h). Throws
 // gmg::Error on a setup problem: an unreadable folder or manifest, a stem given twice, no pool
@@ -166,6 +173,17 @@ void count_statuses(BatchSummary& summary);
 // OUTDIR/summary.csv and OUTDIR/summary.json.
 void write_summary_files(const fs::path& out_dir, const BatchSummary& summary, const BatchOptions& options,
                          BatchPairing pairing);
+
+// A summary.json as batch wrote it, with the two fields the summary itself does not hold.
+struct RecordedSummary {
+  BatchSummary summary;  // clips, references, seed, jobs, times, shard, batch_clips
+  std::string pairing;   // "random" or "manifest"
+  std::string blacklist;
+};
+
+// Reads a summary.json written by write_summary_files. Throws gmg::Error naming the file when
+// it is unreadable or not a batch summary.
+RecordedSummary read_summary_file(const fs::path& path);
 
 // The last progress line: counts, times and where the summary is.
 std::string summary_line(const BatchSummary& summary, const fs::path& out_dir);

@@ -12,6 +12,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/motion/bvh.h"
+#include "graph/graph_io.h"
 
 namespace gmg::batch_internal {
 namespace {
@@ -104,7 +105,10 @@ class Scheduler {
     std::shared_ptr<const MotionGraph> graph;
     std::string error;
     try {
-      graph = std::make_shared<const MotionGraph>(graph_build_from_files({files}, setup_.config));
+      // A --graph is loaded (moved into place, not copied) and shared like a built one.
+      graph = std::make_shared<const MotionGraph>(setup_.options.graph.empty()
+                                                      ? graph_build_from_files({files}, setup_.config)
+                                                      : graph_load(setup_.options.graph));
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -115,8 +119,8 @@ class Scheduler {
       rr.frames = graph->frame_count();
       r.graph = std::move(graph);
       r.state = RefState::State::Ready;
-      setup_.progress.line("batch: graph of " + rr.stem + ": " + std::to_string(rr.frames) + " frames, built in " +
-                           fixed(secs, 2) + "s");
+      setup_.progress.line("batch: graph of " + rr.stem + ": " + std::to_string(rr.frames) + " frames, " +
+                           (setup_.options.graph.empty() ? "built" : "loaded") + " in " + fixed(secs, 2) + "s");
     } else {
       rr.error = error;
       r.error = error;

@@ -7,6 +7,7 @@
 
 #include "engine/app/batch/batch_internal.h"
 #include "engine/core/csv.h"
+#include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 
@@ -49,6 +50,8 @@ ojson summary_json(const BatchSummary& s, const BatchOptions& o, BatchPairing pa
   j["blacklist"] = text_or_null(o.blacklist);
   j["jobs"] = s.jobs;
   j["interrupted"] = s.interrupted;
+  if (s.shard) j["shard"] = {{"index", s.shard->index}, {"count", s.shard->count}, {"batch_clips", s.batch_clips}};
+  if (!s.parts.empty()) j["parts"] = s.parts;
   j["counts"] = {{"clips", s.clips.size()},     {"ok", s.ok},
                  {"failed", s.failed},          {"skipped", s.skipped},
                  {"cancelled", s.cancelled},    {"references", s.references.size()},
@@ -81,7 +84,71 @@ PreviousClip previous_clip(const nlohmann::json& p) {
   return c;
 }
 
+// A field of a summary.json, or `fallback` when absent or of another type.
+template <typename T>
+T field(const nlohmann::json& j, const char* key, T fallback) {
+  if (!j.is_object() || !j.contains(key)) return fallback;
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    return fallback;
+  }
+}
+
+std::string text_field(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j.at(key).is_string() ? j.at(key).get<std::string>() : std::string();
+}
+
 }  // namespace
+
+RecordedSummary read_summary_file(const fs::path& path) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_file_bytes(path.string()));
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string() + ": not a batch summary (" + e.what() + ")");
+  }
+  if (!j.is_object() || field<std::string>(j, "tool", "") != "gmg batch" || !j.contains("clips") ||
+      !j.at("clips").is_array())
+    throw Error(path.string() + ": not a gmg batch summary.json");
+  RecordedSummary r;
+  BatchSummary& s = r.summary;
+  s.seed = field<std::uint64_t>(j, "seed", 0);
+  s.jobs = field<int>(j, "jobs", 1);
+  s.interrupted = field<bool>(j, "interrupted", false);
+  s.seconds = field<double>(j, "seconds", 0.0);
+  s.graph_seconds = field<double>(j, "graph_seconds", 0.0);
+  r.pairing = text_field(j, "pairing");
+  r.blacklist = text_field(j, "blacklist");
+  if (j.contains("shard") && j.at("shard").is_object()) {
+    const nlohmann::json& sh = j.at("shard");
+    s.shard = BatchShard{field<int>(sh, "index", 0), field<int>(sh, "count", 0)};
+    s.batch_clips = field<int>(sh, "batch_clips", -1);
+  } else {
+    s.batch_clips = static_cast<int>(j.at("clips").size());
+  }
+  for (const nlohmann::json& c : j.at("clips")) {
+    BatchClipResult out;
+    out.test_stem = text_field(c, "test");
+    out.reference_stem = text_field(c, "reference");
+    const std::optional<BatchClipStatus> status = enum_from_name(kBatchClipStatusNames, text_field(c, "status"));
+    if (out.test_stem.empty() || !status) throw Error(path.string() + ": a clip without test stem or status");
+    out.status = *status;
+    out.frames = field<int>(c, "frames", 0);
+    out.fallbacks = field<int>(c, "fallbacks", 0);
+    out.failures = field<int>(c, "failures", 0);
+    out.seconds = field<double>(c, "seconds", 0.0);
+    out.output = text_field(c, "output");
+    out.error = text_field(c, "error");
+    s.clips.push_back(std::move(out));
+  }
+  if (j.contains("references") && j.at("references").is_array())
+    for (const nlohmann::json& x : j.at("references"))
+      s.references.push_back({text_field(x, "stem"), text_field(x, "motion"), text_field(x, "audio"),
+                              text_field(x, "transcript"), field<int>(x, "clips", 0), field<int>(x, "frames", 0),
+                              field<double>(x, "build_seconds", 0.0), text_field(x, "error")});
+  return r;
+}
 
 std::string fixed(double v, int decimals) {
   std::ostringstream os;

@@ -1,0 +1,42 @@
+// Making the immutable graph storage (graph/motion_graph.h): from edges added in any order, or
+// from arrays already in compressed sparse row order (the file loader).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "graph/motion_graph.h"
+
+namespace gmg {
+
+// Collects node labels and edges, then builds the storage. Out-edges of a frame keep the order
+// they were added in (the search visits them in that order).
+class GraphBuilder {
+ public:
+  explicit GraphBuilder(int frames);
+
+  int frame_count() const { return static_cast<int>(nodes_.size()); }
+  NodeInfo& node(int frame) { return nodes_.at(static_cast<std::size_t>(frame)); }
+  std::vector<NodeInfo>& nodes() { return nodes_; }
+
+  // Throws gmg::Error when an end is outside [0, frames).
+  void add_edge(int from, int to, const EdgeInfo& info);
+  void reserve_edges(std::size_t edges);
+
+  // The storage (a stable counting sort by source); the builder is left empty.
+  GraphStorage finish();
+
+ private:
+  std::vector<NodeInfo> nodes_;
+  std::vector<std::uint32_t> from_, to_;
+  std::vector<EdgeInfo> info_;
+};
+
+// Moves arrays in compressed sparse row order into a storage without copying them: the
+// out-edges of frame f are rowstart[f] .. rowstart[f + 1] - 1 of targets and edges. Throws
+// gmg::Error when they disagree (sizes, rowstart not ascending from 0 to the edge count, a
+// target outside the graph).
+GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
+                                       std::vector<std::size_t> targets, std::vector<EdgeInfo> edges);
+
+}  // namespace gmg

@@ -1,0 +1,62 @@
+// The compact graph storage: built from edges in any order, or from arrays in CSR order.
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "graph/graph_builder.h"
+
+namespace gmg {
+namespace {
+
+std::vector<std::pair<int, double>> out_of(const GraphStorage& g, int f) {
+  std::vector<std::pair<int, double>> out;
+  for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g); it != end; ++it)
+    out.emplace_back(static_cast<int>(boost::target(*it, g)), g[*it].weight);
+  return out;
+}
+
+TEST(GraphBuilder, OutEdgesKeepTheOrderTheyWereAddedIn) {
+  GraphBuilder b(4);
+  b.node(2).kinds = kKeywordNode;
+  b.node(2).keyword = "big";
+  b.add_edge(1, 3, {0.5, false});
+  b.add_edge(0, 1, {0.0, true});
+  b.add_edge(1, 2, {0.0, true});
+  b.add_edge(1, 0, {0.25, false});
+  b.add_edge(3, 0, {0.75, false});
+  const GraphStorage g = b.finish();
+  EXPECT_EQ(boost::num_vertices(g), 4u);
+  EXPECT_EQ(boost::num_edges(g), 5u);
+  EXPECT_EQ(out_of(g, 0), (std::vector<std::pair<int, double>>{{1, 0.0}}));
+  EXPECT_EQ(out_of(g, 1), (std::vector<std::pair<int, double>>{{3, 0.5}, {2, 0.0}, {0, 0.25}}));
+  EXPECT_TRUE(out_of(g, 2).empty());
+  EXPECT_EQ(out_of(g, 3), (std::vector<std::pair<int, double>>{{0, 0.75}}));
+  EXPECT_EQ(g[2].keyword, "big");
+  EXPECT_EQ(g[2].kinds, kKeywordNode);
+  EXPECT_EQ(b.frame_count(), 0) << "finish leaves the builder empty";
+}
+
+TEST(GraphBuilder, EdgesOutsideTheGraphAreRejected) {
+  GraphBuilder b(3);
+  EXPECT_THROW(b.add_edge(0, 3, {}), Error);
+  EXPECT_THROW(b.add_edge(-1, 0, {}), Error);
+}
+
+TEST(GraphBuilder, ArraysInCsrOrderAreMovedInAndChecked) {
+  std::vector<std::size_t> targets = {1, 2, 0};
+  const std::size_t* data = targets.data();
+  const GraphStorage g = graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 3}, std::move(targets),
+                                                   {{0.0, true}, {1.5, false}, {2.5, false}});
+  EXPECT_EQ(g.m_forward.m_column.data(), data) << "the targets array is moved, not copied";
+  EXPECT_EQ(out_of(g, 0), (std::vector<std::pair<int, double>>{{1, 0.0}, {2, 1.5}}));
+  EXPECT_EQ(out_of(g, 2), (std::vector<std::pair<int, double>>{{0, 2.5}}));
+  // Row starts that do not end at the edge count, that go down, or a target past the end.
+  EXPECT_THROW(graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 2}, {1, 2, 0}, std::vector<EdgeInfo>(3)),
+               Error);
+  EXPECT_THROW(graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 1, 3}, {1, 2, 0}, std::vector<EdgeInfo>(3)),
+               Error);
+  EXPECT_THROW(graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 3}, {1, 2, 3}, std::vector<EdgeInfo>(3)),
+               Error);
+}
+
+}  // namespace
+}  // namespace gmg

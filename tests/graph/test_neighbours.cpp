@@ -1,0 +1,212 @@
+// Bounded transitions: candidate sets K_l (graph/neighbours.h), both searches, and the bound on
+// transitions out of a frame, against a brute-force reference written from the definitions.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <set>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "engine/app/synth/synth.h"
+#include "engine/motion/bvh.h"
+#include "graph/continuity.h"
+#include "graph/neighbours.h"
+#include "graph/pruning.h"
+#include "tests/graph/fixtures.h"
+#include "tests/test_support.h"
+
+namespace gmg {
+namespace {
+
+using namespace gmg::testing;
+
+// n frames of a motion that keeps coming back near earlier poses (three incommensurate
+// oscillations in 30 dimensions plus noise), so frames have many candidates; no structure a
+// search could lean on beyond that.
+PoseFeatures looping_motion(int n, unsigned seed) {
+  std::srand(seed);
+  const Eigen::MatrixXd mix = Eigen::MatrixXd::Random(30, 3);
+  PoseFeatures f;
+  f.positions = Eigen::MatrixXd::Zero(30, n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::VectorXd phase(3);
+    for (int j = 0; j < 3; ++j) phase(j) = std::sin(i * (0.1 + 0.037 * j) + j);
+    f.positions.col(i) = mix * phase + 0.003 * Eigen::VectorXd::Random(30);
+  }
+  f.velocities = Eigen::MatrixXd::Zero(30, n);
+  for (int i = 1; i < n; ++i) f.velocities.col(i) = f.positions.col(i) - f.positions.col(i - 1);
+  f.velocities.col(0) = f.velocities.col(1);
+  return f;
+}
+
+// K_l by definition: every allowed r with d(l, r) <= theta_l, sorted by (d, r), the first k.
+std::vector<std::vector<int>> brute_candidates(const PoseFeatures& f, const std::vector<double>& theta,
+                                               const GraphParams& p) {
+  const int n = f.frame_count();
+  const std::size_t k = static_cast<std::size_t>(p.max_transitions * p.candidates_per_transition);
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(n));
+  for (int l = 0; l < n; ++l) {
+    std::vector<std::pair<double, int>> c;
+    for (int r = 0; r < n; ++r) {
+      if (r == l || r == l + 1 || (p.exclude_near && std::abs(r - l) <= p.l_pn)) continue;
+      const double d = pose_distance(f, l, r, p);
+      if (d <= theta[static_cast<std::size_t>(l)]) c.emplace_back(d, r);
+    }
+    std::sort(c.begin(), c.end());
+    if (k > 0 && c.size() > k) c.resize(k);
+    for (const auto& [d, r] : c) out[static_cast<std::size_t>(l)].push_back(r);
+    std::sort(out[static_cast<std::size_t>(l)].begin(), out[static_cast<std::size_t>(l)].end());
+  }
+  return out;
+}
+
+// The bounded analysis by definition: pruning 1 on K_l, pruning 2 against the edges kept so far,
+// the max_transitions nearest survivors (by weight, then target).
+std::vector<Transition> brute_analysis(const PoseFeatures& f, const std::vector<int>& run_end, const GraphParams& p) {
+  const std::vector<double> theta = continuity_thresholds(f, run_end, p);
+  const std::vector<std::vector<int>> k = brute_candidates(f, theta, p);
+  std::vector<Transition> edges;
+  std::vector<std::pair<int, int>> kept;  // all edges so far
+  for (int l = 0; l < f.frame_count(); ++l) {
+    std::vector<std::pair<double, int>> survivors;
+    for (const int r : prune_runs(k[static_cast<std::size_t>(l)], p.l_pn)) {
+      bool covered = false;
+      for (const auto& [a, b] : kept)
+        covered = covered || (std::abs(a - l) <= p.l_pn && std::abs(b - r) <= p.l_pn) ||
+                  (std::abs(a - r) <= p.l_pn && std::abs(b - l) <= p.l_pn);
+      if (!covered) survivors.emplace_back(pose_distance(f, l, r, p), r);
+    }
+    std::sort(survivors.begin(), survivors.end());
+    if (p.max_transitions > 0 && survivors.size() > static_cast<std::size_t>(p.max_transitions))
+      survivors.resize(static_cast<std::size_t>(p.max_transitions));
+    std::sort(survivors.begin(), survivors.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+    for (const auto& [d, r] : survivors) {
+      edges.push_back({l, r, d});
+      kept.emplace_back(l, r);
+    }
+  }
+  return edges;
+}
+
+std::vector<std::tuple<int, int, double>> as_tuples(const std::vector<Transition>& edges) {
+  std::vector<std::tuple<int, int, double>> out;
+  out.reserve(edges.size());
+  for (const Transition& t : edges) out.emplace_back(t.from, t.to, t.weight);
+  return out;
+}
+
+TEST(Neighbours, BothSearchesFindTheCandidatesByDefinition) {
+  const PoseFeatures f = looping_motion(500, 11);
+  GraphParams p;
+  p.l_pn = 2;
+  p.max_transitions = 3;  // k = 12: binds on most frames of a random walk
+  p.ann_checks = 0;       // the tree searched to the end is exact
+  const std::vector<double> theta = continuity_thresholds(f, one_run(500), p);
+  const auto expected = brute_candidates(f, theta, p);
+  std::size_t bound = 0;
+  for (const auto& k : expected) bound += k.size() == 12 ? 1 : 0;
+  ASSERT_GT(bound, 100u) << "the bound must bind for the test to mean anything";
+  EXPECT_EQ(candidate_sets(f, theta, p, NeighbourSearch::Exact), expected);
+  EXPECT_EQ(candidate_sets(f, theta, p, NeighbourSearch::Approximate), expected);
+  p.max_transitions = 0;  // unbounded: every candidate under the threshold
+  const auto all = brute_candidates(f, theta, p);
+  EXPECT_EQ(candidate_sets(f, theta, p, NeighbourSearch::Exact), all);
+  EXPECT_EQ(candidate_sets(f, theta, p, NeighbourSearch::Approximate), all);
+}
+
+TEST(Neighbours, NoFrameHasMoreThanMaxTransitionsAndTheyAreTheNearest) {
+  const PoseFeatures f = looping_motion(400, 5);
+  GraphParams p;
+  p.l_pn = 1;
+  p.max_transitions = 2;
+  const std::vector<Transition> edges = continuity_analysis(f, one_run(400), p);
+  std::vector<int> out_degree(400, 0);
+  for (const Transition& t : edges) ++out_degree[static_cast<std::size_t>(t.from)];
+  EXPECT_LE(*std::max_element(out_degree.begin(), out_degree.end()), 2);
+  EXPECT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "the bound must bind";
+  EXPECT_EQ(as_tuples(edges), as_tuples(brute_analysis(f, one_run(400), p)));
+}
+
+TEST(Neighbours, ApproximateSearchedExhaustivelyGivesTheExactEdgeSet) {
+  const PoseFeatures f = looping_motion(600, 3);
+  GraphParams p;
+  p.l_pn = 2;
+  p.max_transitions = 4;
+  p.ann_checks = 0;
+  p.neighbours = NeighbourSearch::Exact;
+  const std::vector<Transition> exact = continuity_analysis(f, one_run(600), p);
+  p.neighbours = NeighbourSearch::Approximate;
+  const std::vector<Transition> approximate = continuity_analysis(f, one_run(600), p);
+  ASSERT_GT(exact.size(), 100u);
+  EXPECT_EQ(as_tuples(approximate), as_tuples(exact));
+  // With a small budget the search gives up early on some frames: fewer candidates, never others.
+  p.ann_checks = 24;
+  const std::vector<double> theta = continuity_thresholds(f, one_run(600), p);
+  const auto found = candidate_sets(f, theta, p, NeighbourSearch::Approximate);
+  const auto truth = candidate_sets(f, theta, p, NeighbourSearch::Exact);
+  const double recall = candidate_recall(found, truth);
+  EXPECT_LT(recall, 1.0);
+  EXPECT_GT(recall, 0.0);
+}
+
+TEST(Neighbours, UnboundedIsThePapersAnalysis) {
+  // max_transitions 0: every candidate under the threshold goes through both prunings (the
+  // definition of brute_analysis with no bound), whichever search finds them.
+  const PoseFeatures f = looping_motion(300, 9);
+  GraphParams p;
+  p.l_pn = 3;
+  p.max_transitions = 0;
+  const auto expected = as_tuples(brute_analysis(f, one_run(300), p));
+  p.neighbours = NeighbourSearch::Exact;
+  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(300), p)), expected);
+  p.neighbours = NeighbourSearch::Approximate;
+  p.ann_checks = 0;
+  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(300), p)), expected);
+}
+
+TEST(Neighbours, CandidateRecallCountsSharedPairs) {
+  // exact {1, 2} {3} {} against found {1} {3, 4} {5}: 2 of 3 exact pairs found.
+  EXPECT_DOUBLE_EQ(candidate_recall({{1}, {3, 4}, {5}}, {{1, 2}, {3}, {}}), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(candidate_recall({{}}, {{}}), 1.0);
+}
+
+TEST(Neighbours, AutoSearchesExactlyUpToExactFrames) {
+  GraphParams p;
+  p.exact_frames = 100;
+  EXPECT_EQ(neighbour_search_for(p, 100), NeighbourSearch::Exact);
+  EXPECT_EQ(neighbour_search_for(p, 101), NeighbourSearch::Approximate);
+  p.neighbours = NeighbourSearch::Exact;
+  EXPECT_EQ(neighbour_search_for(p, 101), NeighbourSearch::Exact);
+  EXPECT_EQ(candidate_limit(p), p.max_transitions * p.candidates_per_transition);
+  p.max_transitions = 0;
+  EXPECT_EQ(candidate_limit(p), 0);
+}
+
+// The approximate search with the default budget finds >= 95% of the exact candidate pairs.
+void expect_recall(const Motion& m) {
+  const PoseFeatures f = pose_features(m);
+  GraphParams p;
+  const std::vector<double> theta = continuity_thresholds(f, one_run(f.frame_count()), p);
+  const double recall = candidate_recall(candidate_sets(f, theta, p, NeighbourSearch::Approximate),
+                                         candidate_sets(f, theta, p, NeighbourSearch::Exact));
+  std::cout << "recall of the exact candidate set: " << recall << " (" << f.frame_count() << " frames)\n";
+  EXPECT_GE(recall, 0.95);
+}
+
+TEST(NeighboursRealData, ApproximateRecallOnBeat2AtLeast95Percent) {
+  GMG_REQUIRE_SHARED_DATA();
+  expect_recall(bvh_read(shared_data_dir() + "/beat2_scott/2_scott_0_1_1.bvh"));
+}
+
+TEST(Neighbours, ApproximateRecallOnA427sSyntheticSpeakerAtLeast95Percent) {
+  SynthSpec spec;
+  spec.duration_s = 427.0;  // the paper's longest reference
+  spec.seed = 3;
+  spec.joint_count_hint = 25;
+  expect_recall(synth_speaker(spec).motion);
+}
+
+}  // namespace
+}  // namespace gmg
