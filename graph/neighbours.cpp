@@ -507,6 +507,11 @@ NeighbourSearch neighbour_search_for(const GraphParams& params, int frames) {
   return frames <= params.exact_frames ? NeighbourSearch::Exact : NeighbourSearch::Approximate;
 }
 
+int graph_transition_bound(const GraphParams& params, int frames) {
+  const bool small = params.neighbours == NeighbourSearch::Auto && frames <= params.exact_frames;
+  return small ? 0 : params.max_transitions;
+}
+
 int candidate_limit(const GraphParams& params) {
   if (params.max_transitions == 0) return 0;
   const long long k = static_cast<long long>(params.max_transitions) * params.candidates_per_transition;

@@ -121,6 +121,7 @@ TEST(Neighbours, NoFrameHasMoreThanMaxTransitionsAndTheyAreTheNearest) {
   GraphParams p;
   p.l_pn = 1;
   p.max_transitions = 2;
+  p.neighbours = NeighbourSearch::Exact;  // Auto would give this small graph the unbounded analysis
   const std::vector<Transition> edges = continuity_analysis(f, one_run(400), p);
   std::vector<int> out_degree(400, 0);
   for (const Transition& t : edges) ++out_degree[static_cast<std::size_t>(t.from)];
@@ -182,6 +183,32 @@ TEST(Neighbours, AutoSearchesExactlyUpToExactFrames) {
   EXPECT_EQ(candidate_limit(p), p.max_transitions * p.candidates_per_transition);
   p.max_transitions = 0;
   EXPECT_EQ(candidate_limit(p), 0);
+}
+
+TEST(Neighbours, AutoBoundsTransitionsAboveExactFramesOnly) {
+  GraphParams p;
+  p.exact_frames = 100;
+  p.max_transitions = 7;
+  EXPECT_EQ(graph_transition_bound(p, 100), 0);  // the paper's analysis
+  EXPECT_EQ(graph_transition_bound(p, 101), 7);
+  p.neighbours = NeighbourSearch::Exact;  // an explicit search always takes the bound
+  EXPECT_EQ(graph_transition_bound(p, 100), 7);
+  p.neighbours = NeighbourSearch::Approximate;
+  EXPECT_EQ(graph_transition_bound(p, 10), 7);
+}
+
+// With Auto below exact_frames the edges are the unbounded analysis's, whatever max_transitions.
+TEST(Neighbours, SmallGraphsGetTheUnboundedAnalysisUnderAuto) {
+  const PoseFeatures f = looping_motion(400, 5);
+  GraphParams unbounded;
+  unbounded.l_pn = 1;
+  unbounded.max_transitions = 0;
+  GraphParams bounded = unbounded;
+  bounded.max_transitions = 1;
+  const auto all = as_tuples(continuity_analysis(f, one_run(400), unbounded));
+  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), bounded)), all);
+  bounded.exact_frames = 399;  // now above: the bound applies and binds
+  EXPECT_LT(continuity_analysis(f, one_run(400), bounded).size(), all.size());
 }
 
 // The approximate search with the default budget finds >= 95% of the exact candidate pairs.
