@@ -1,54 +1,15 @@
 // The `gmg batch` subcommand: options, interruption by signal, exit codes.
 #include <atomic>
-#include <csignal>
 #include <iostream>
 #include <memory>
-
-#include <signal.h>
 
 #include <CLI/CLI.hpp>
 
 #include "engine/app/batch/batch.h"
-#include "engine/core/files.h"
+#include "engine/core/interrupt.h"
 
 namespace gmg {
 namespace {
-
-std::atomic<bool> g_interrupt{false};
-
-void batch_on_signal(int sig) {
-  if (g_interrupt.load()) {  // second signal: die the ordinary way, leaving no temporary file
-    remove_registered_temporary_files();
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);
-    return;
-  }
-  g_interrupt.store(true);
-}
-
-// Installs the handler for SIGINT and SIGTERM while alive.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupt.store(false);
-    struct sigaction sa {};
-    sa.sa_handler = batch_on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = 0;
-    ::sigaction(SIGINT, &sa, &old_int_);
-    ::sigaction(SIGTERM, &sa, &old_term_);
-  }
-  ~InterruptGuard() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
 
 // The names of an enum's table, for CLI::IsMember (so the choices are spelled once).
 template <typename E, std::size_t N>
@@ -96,8 +57,8 @@ int run_batch_command(const BatchCliState& st, bool seed_given) {
     if (!st.shard.empty()) options.shard = parse_batch_shard(st.shard);
     if (!st.pairing.empty()) options.pairing = enum_from_name(kBatchPairingNames, st.pairing).value();
     options.progress = enum_from_name(kBatchProgressNames, st.progress).value_or(BatchProgress::Auto);
-    InterruptGuard guard;
-    options.cancel = &g_interrupt;
+    const InterruptFlag interrupt;
+    options.cancel = &InterruptFlag::flag();
     const BatchSummary s = batch_run(options, config, std::cerr);
     return s.interrupted ? 130 : s.failed > 0 ? 1 : 0;
   } catch (const std::exception& e) {

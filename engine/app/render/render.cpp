@@ -7,6 +7,7 @@
 
 #include "engine/app/render/encoder.h"
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 #include "engine/core/strings.h"
 
 namespace gmg::render {
@@ -23,54 +24,27 @@ void check_output(const std::string& path) {
     throw Error(path + ": the folder " + parent.string() + " does not exist");
 }
 
-volatile std::sig_atomic_t g_interrupted = 0;
-
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
-
-// While a video is being made, Ctrl-C or a TERM ends the job through the error path, so the
-// temporary video is removed rather than left behind.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupted = 0;
-    struct sigaction a {};
-    a.sa_handler = on_interrupt;
-    sigemptyset(&a.sa_mask);
-    ::sigaction(SIGINT, &a, &old_int_);
-    ::sigaction(SIGTERM, &a, &old_term_);
-  }
-  ~InterruptGuard() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  // Throws once a signal came.
-  static void check(const std::string& output) {
-    if (g_interrupted) throw Error(output + ": interrupted; no video written");
-  }
-
- private:
-  struct sigaction old_int_ {
-  }, old_term_{};
-};
+// Throws once Ctrl-C or a TERM came (engine/core/interrupt.h): the job ends through the error
+// path, so the temporary video is removed rather than left behind.
+void check_interrupt(const std::string& output) {
+  if (InterruptFlag::raised()) throw Error(output + ": interrupted; no video written");
+}
 
 // A signal after a successful finish() changes nothing: the video is complete.
 void encode(const Scene& scene, const EncoderSettings& settings) {
-  InterruptGuard::check(settings.name);
+  check_interrupt(settings.name);
   VideoEncoder encoder(settings);
   Canvas canvas(scene.width, scene.height);
   try {
     for (int f = 0; f < scene.frame_count; ++f) {
-      InterruptGuard::check(settings.name);
+      check_interrupt(settings.name);
       scene_draw(scene, f, canvas.context());
       encoder.write_frame(canvas.pixels(), canvas.stride());
     }
-    InterruptGuard::check(settings.name);
+    check_interrupt(settings.name);
     encoder.finish();
   } catch (const Error&) {
-    InterruptGuard::check(settings.name);  // ffmpeg got the Ctrl-C too: say why it stopped
+    check_interrupt(settings.name);  // ffmpeg got the Ctrl-C too: say why it stopped
     throw;
   }
 }
@@ -87,7 +61,7 @@ std::string temporary_twin(const std::string& path) {
 
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options) {
   check_output(in.output);
-  const InterruptGuard guard;
+  const InterruptFlag interrupt;
   const std::string ffmpeg = find_executable(options.ffmpeg);
   if (ffmpeg.empty())
     throw Error(options.ffmpeg + ": not found" + (options.ffmpeg.find('/') == std::string::npos ? " on PATH" : "") +
