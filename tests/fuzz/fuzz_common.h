@@ -10,6 +10,8 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/motion/motion.h"
+#include "engine/motion/rotation.h"
 
 namespace gmg::fuzz {
 
@@ -28,6 +30,27 @@ void expect_success_or_error(const std::string& name, F&& f) {
         what.rfind("config key ", 0) != 0 && what.rfind("unknown config key ", 0) != 0)
       std::abort();  // an error that does not say which input it is about
   }
+}
+
+// Two joints (a root with position channels and a head): the skeleton of the hand-made graph
+// seed and the template the .npz harness reads archives with.
+inline gmg::Skeleton two_joint_skeleton() {
+  gmg::Skeleton sk;
+  gmg::Joint root;
+  root.name = "hips";
+  root.channels = {gmg::Channel::Xposition, gmg::Channel::Yposition, gmg::Channel::Zposition,
+                   gmg::Channel::Zrotation, gmg::Channel::Xrotation, gmg::Channel::Yrotation};
+  root.rotation_order = gmg::rotation_order_from_channels(root.channels);
+  gmg::Joint head;
+  head.name = "head";
+  head.parent = 0;
+  head.offset = glm::dvec3(0, 10, 0);
+  head.channels = {gmg::Channel::Zrotation, gmg::Channel::Xrotation, gmg::Channel::Yrotation};
+  head.rotation_order = gmg::rotation_order_from_channels(head.channels);
+  head.has_end_site = true;
+  head.end_site = glm::dvec3(0, 5, 0);
+  sk.joints = {root, head};
+  return sk;
 }
 
 }  // namespace gmg::fuzz

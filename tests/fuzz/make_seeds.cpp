@@ -18,8 +18,10 @@
 #include "engine/app/synth/synth.h"
 #include "engine/core/files.h"
 #include "engine/motion/bvh.h"
+#include "engine/motion/npz.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
+#include "tests/fuzz/fuzz_common.h"
 
 namespace fs = std::filesystem;
 
@@ -127,21 +129,7 @@ void transcript_seeds(const fs::path& root, const gmg::SynthClip& clip) {
 // A hand-made graph: 2 joints, 10 frames in two clips, an onset, a keyword and a break node, one
 // transition. Small, so mutations reach every field quickly.
 gmg::MotionGraph tiny_graph() {
-  gmg::Skeleton sk;
-  gmg::Joint root;
-  root.name = "hips";
-  root.channels = {gmg::Channel::Xposition, gmg::Channel::Yposition, gmg::Channel::Zposition,
-                   gmg::Channel::Zrotation, gmg::Channel::Xrotation, gmg::Channel::Yrotation};
-  root.rotation_order = gmg::rotation_order_from_channels(root.channels);
-  gmg::Joint head;
-  head.name = "head";
-  head.parent = 0;
-  head.offset = glm::dvec3(0, 10, 0);
-  head.channels = {gmg::Channel::Zrotation, gmg::Channel::Xrotation, gmg::Channel::Yrotation};
-  head.rotation_order = gmg::rotation_order_from_channels(head.channels);
-  head.has_end_site = true;
-  head.end_site = glm::dvec3(0, 5, 0);
-  sk.joints = {root, head};
+  const gmg::Skeleton sk = gmg::fuzz::two_joint_skeleton();
   gmg::MotionGraph g;
   g.motion = gmg::motion_rest(sk, 30.0, 10);
   g.clips = {{"a.bvh", 0, 6}, {"b.bvh", 6, 4}};
@@ -186,6 +174,31 @@ void csv_seeds(const fs::path& dir) {
 
 }  // namespace
 
+// Archives gmg writes for the two-joint skeleton (whole and fractional frame rate), and one
+// whose `poses` is cut short.
+void npz_seeds(const fs::path& dir) {
+  gmg::Motion m = gmg::motion_rest(gmg::fuzz::two_joint_skeleton(), 30.0, 4);
+  m.rotations[m.index(2, 1)] = glm::angleAxis(0.5, glm::dvec3(0, 0, 1));
+  const std::string whole = gmg::npz_format(m, "seed.npz");
+  put(dir, "rest.npz", whole);
+  m.fps = 29.97;
+  put(dir, "ntsc.npz", gmg::npz_format(m, "seed.npz"));
+  put(dir, "cut.npz", whole.substr(0, whole.size() / 2));
+}
+
+// Whisper (segments[].words[]) and WhisperX (with word_segments[] and an untimed word).
+void whisper_seeds(const fs::path& dir) {
+  put(dir, "whisper.json",
+      R"({"text": " Hello there.", "segments": [{"start": 0.0, "end": 1.2, "text": " Hello there.",)"
+      R"( "words": [{"word": " Hello", "start": 0.1, "end": 0.5}, {"word": " there.", "start": 0.6, "end": 1.1}]}]})");
+  put(dir, "whisperx.json",
+      R"({"segments": [{"start": 0.0, "end": 2.0, "words": [{"word": "It", "start": 0.1, "end": 0.3},)"
+      R"( {"word": "1984"}, {"word": "ended", "start": 1.2, "end": 1.6}]}],)"
+      R"( "word_segments": [{"word": "It", "start": 0.1, "end": 0.3}]})");
+  put(dir, "no_words.json", R"({"segments": [{"start": 0, "end": 1, "text": "hi"}]})");
+  put(dir, "google.json", R"([{"alternatives": [{"words": [{"startTime": "0s", "endTime": "1s", "word": "x"}]}]}])");
+}
+
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::cerr << "usage: gmg_fuzz_seeds DIR\n";
@@ -203,6 +216,8 @@ int main(int argc, char** argv) {
     graph_seeds(root / "graph");
     config_seeds(root / "config");
     csv_seeds(root / "csv");
+    npz_seeds(root / "npz");
+    whisper_seeds(root / "whisper_json");
   } catch (const std::exception& e) {
     std::cerr << "gmg_fuzz_seeds: " << e.what() << "\n";
     return 1;
