@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "audio/resample.h"
 #include "engine/core/error.h"
@@ -127,17 +128,36 @@ std::vector<double> OnsetAnalysis::onset_times() const {
   return t;
 }
 
-std::vector<float> onset_strength_envelope(const Audio& audio) {
+namespace {
+
+void check_rate(const Audio& audio) {
   if (audio.sample_rate <= 0) {
     throw Error("onset detection: sample rate " + std::to_string(audio.sample_rate) + " is not positive");
   }
-  std::vector<float> resampled;
-  const std::vector<float>* yp = &audio.samples;
-  if (audio.sample_rate != kSr) {
-    resampled = resample_poly(audio.samples, audio.sample_rate, kSr);
-    yp = &resampled;
-  }
-  const std::vector<float>& y = *yp;
+}
+
+// The envelope of samples already at 22050 Hz.
+std::vector<float> envelope_at_onset_rate(const std::vector<float>& y);
+
+}  // namespace
+
+std::vector<float> onset_strength_envelope(const Audio& audio) {
+  check_rate(audio);
+  if (audio.sample_rate == kSr) return envelope_at_onset_rate(audio.samples);
+  return envelope_at_onset_rate(resample_poly(audio.samples, audio.sample_rate, kSr));
+}
+
+std::vector<float> onset_strength_envelope(Audio&& audio) {
+  check_rate(audio);
+  std::vector<float> y =
+      audio.sample_rate == kSr ? std::move(audio.samples) : resample_poly(audio.samples, audio.sample_rate, kSr);
+  std::vector<float>().swap(audio.samples);
+  return envelope_at_onset_rate(y);
+}
+
+namespace {
+
+std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
   const long long n = static_cast<long long>(y.size());
 
   // STFT with center=True: the signal is zero padded by n_fft / 2 on both
@@ -208,6 +228,8 @@ std::vector<float> onset_strength_envelope(const Audio& audio) {
   }
   return env;
 }
+
+}  // namespace
 
 OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, const OnsetParams& params) {
   if (params.pre_max < 0 || params.post_max < 1 || params.pre_avg < 0 || params.post_avg < 1 || params.wait < 0) {
@@ -283,6 +305,10 @@ OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, cons
 
 OnsetAnalysis detect_onsets(const Audio& audio, const OnsetParams& params) {
   return detect_onsets_in_envelope(onset_strength_envelope(audio), params);
+}
+
+OnsetAnalysis detect_onsets(Audio&& audio, const OnsetParams& params) {
+  return detect_onsets_in_envelope(onset_strength_envelope(std::move(audio)), params);
 }
 
 std::vector<int> onset_motion_frames(const OnsetAnalysis& a, double fps, int num_frames) {

@@ -49,8 +49,13 @@ struct OnsetAnalysis {
 // audio.sample_rate is not positive.
 std::vector<float> onset_strength_envelope(const Audio& audio);
 
+// The same, taking the audio: its samples are released as soon as they are resampled to
+// 22050 Hz, so a long recording is not held twice (an hour at 16 kHz is 230 MB).
+std::vector<float> onset_strength_envelope(Audio&& audio);
+
 // Envelope, peak picking, the raw-strength filter and backtracking.
 OnsetAnalysis detect_onsets(const Audio& audio, const OnsetParams& params);
+OnsetAnalysis detect_onsets(Audio&& audio, const OnsetParams& params);
 
 // The same on an envelope computed elsewhere (e.g. librosa's own, for tests):
 // peak picking on the normalised envelope, the raw-strength filter and

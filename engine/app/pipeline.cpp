@@ -16,6 +16,7 @@
 #include "engine/assemble/resample.h"
 #include "engine/assemble/transitions.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/limits.h"
 #include "engine/core/strings.h"
 #include "engine/metrics/evaluate.h"
@@ -29,48 +30,86 @@ text::Lexicon lexicon_for(const GraphParams& params) {
   return params.keywords.empty() ? text::default_lexicon() : text::load_lexicon(params.keywords);
 }
 
-SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
-                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
+namespace {
+
+SpeechTimes times_of(audio::OnsetAnalysis onsets, double duration_s, const std::vector<text::Word>* words,
+                     const std::string& name) {
+  SpeechTimes t;
+  t.duration_s = duration_s;
+  t.onsets = std::move(onsets);
+  t.name = name;
+  if (words) {
+    text::check_transcript_fits(*words, duration_s, name);
+    t.words = *words;
+    t.has_words = true;
+  }
+  return t;
+}
+
+audio::OnsetParams onset_params_of(const GraphParams& params) {
+  audio::OnsetParams p;
+  p.min_onset_strength = params.min_onset_strength;
+  return p;
+}
+
+}  // namespace
+
+SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int frame_count,
+                                   const text::Lexicon& lexicon) {
   SpeechEvents ev;
-  ev.duration_s = sound.duration();
+  ev.duration_s = times.duration_s;
   if (frame_count < 0 && !(ev.duration_s * fps <= limits::kMaxFrames))
-    throw Error(name + ": " + format_number(ev.duration_s) + " s of speech at " + format_number(fps) +
+    throw Error(times.name + ": " + format_number(ev.duration_s) + " s of speech at " + format_number(fps) +
                 " fps is more than the " + std::to_string(limits::kMaxFrames) + " frames gmg makes");
   ev.total_frames = frame_count >= 0 ? frame_count : static_cast<int>(std::lround(ev.duration_s * fps));
-  if (ev.total_frames < 1) throw Error(name + ": audio is shorter than one motion frame");
-
-  audio::OnsetParams onset_params;
-  onset_params.min_onset_strength = params.min_onset_strength;
-  const audio::OnsetAnalysis onsets = audio::detect_onsets(sound, onset_params);
-  ev.onset_frames = audio::onset_motion_frames(onsets, fps, ev.total_frames);
-
-  if (words) {
-    text::check_transcript_fits(*words, ev.duration_s, name);
-    ev.words = static_cast<int>(words->size());
+  if (ev.total_frames < 1) throw Error(times.name + ": audio is shorter than one motion frame");
+  ev.onset_frames = audio::onset_motion_frames(times.onsets, fps, ev.total_frames);
+  if (times.has_words) {
+    ev.words = static_cast<int>(times.words.size());
     for (const text::KeywordFrame& k :
-         text::keyword_frames(text::detect_keywords(*words, lexicon), fps, ev.total_frames))
+         text::keyword_frames(text::detect_keywords(times.words, lexicon), fps, ev.total_frames))
       ev.keyword_frames.emplace_back(k.frame, k.keyword);
   }
   return ev;
 }
 
+SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
+  const SpeechTimes t = times_of(audio::detect_onsets(sound, onset_params_of(params)), sound.duration(), words, name);
+  return speech_events_on_grid(t, fps, frame_count, lexicon);
+}
+
+SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
+  audio::Audio sound = audio::read_audio(files.audio);
+  const double duration_s = sound.duration();
+  std::vector<text::Word> words;
+  if (!files.transcript.empty()) words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
+  const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
+  // Checked before the long onset analysis: a transcript of another recording fails at once.
+  if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
+  audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
+  return times_of(std::move(onsets), duration_s, files.transcript.empty() ? nullptr : &words, name);
+}
+
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
                             const text::Lexicon& lexicon) {
-  const audio::Audio sound = audio::read_audio(files.audio);
-  if (files.transcript.empty()) return speech_events(sound, nullptr, files.audio, fps, frame_count, params, lexicon);
-  const std::vector<text::Word> words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
-  return speech_events(sound, &words, files.transcript, fps, frame_count, params, lexicon);
+  return speech_events_on_grid(speech_times(files, params), fps, frame_count, lexicon);
 }
 
 namespace {
 
 ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon) {
+  // The speech first: its audio (the larger of the two for long clips) is released before the
+  // motion is read. A motion that cannot be opened is still reported before the long analysis.
+  check_readable_file(c.motion);
+  if (!c.skeleton.empty()) check_readable_file(c.skeleton);
+  const SpeechTimes times = speech_times(c.speech, config.graph);
   ClipEvents in;
   in.name = c.motion;
   in.motion = motion_read(c.motion, c.skeleton);
   motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                          config.cleanup.smooth_order, c.motion);
-  const SpeechEvents ev = speech_analyse(c.speech, in.motion.fps, in.motion.frame_count, config.graph, lexicon);
+  const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);
   in.onset_frames = ev.onset_frames;
   in.keyword_frames = ev.keyword_frames;
   return in;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/app/config.h"
 #include "engine/motion/motion.h"
@@ -43,8 +44,24 @@ struct SpeechEvents {
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
                             const text::Lexicon& lexicon);
 
-// Same, from audio and words already in memory (words may be null: no transcript). `name`
-// labels errors (the transcript's file name).
+// Speech analysed in seconds, before it is put on a motion's frame grid. A reference's audio is
+// analysed (and released) before its motion is read, so the two are never in memory together.
+struct SpeechTimes {
+  double duration_s = 0.0;
+  audio::OnsetAnalysis onsets;
+  std::vector<text::Word> words;
+  bool has_words = false;
+  std::string name;  // labels errors: the transcript's file name, else the audio's
+};
+
+// Reads and analyses a speech (the transcript past the audio's end is an error here already).
+SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params);
+
+// The events of analysed speech on a grid of `fps` (frame_count as for speech_analyse).
+SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int frame_count, const text::Lexicon& lexicon);
+
+// Same as speech_analyse, from audio and words already in memory (words may be null: no
+// transcript). `name` labels errors (the transcript's file name).
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
                            double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon);
 

@@ -295,6 +295,15 @@ void check_input_file(const std::string& path) {
   if (::stat(path.c_str(), &st) == 0) refuse_non_regular(path, st.st_mode);
 }
 
+void check_readable_file(const std::string& path) {
+  check_input_file(path);
+  const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  if (fd.get() < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  refuse_non_regular(path, st.st_mode);
+}
+
 std::string read_file_bytes(const std::string& path) {
   check_input_file(path);
   // O_NONBLOCK: should the file have become a FIFO since the check, the open still returns at

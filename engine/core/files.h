@@ -27,6 +27,10 @@ std::string read_file_bytes(const std::string& path);
 // left to the reader's "cannot open").
 void check_input_file(const std::string& path);
 
+// Throws read_file_bytes's error when path cannot be opened for reading or is not a regular
+// file; reads nothing. For checking every input of a job before its long steps.
+void check_readable_file(const std::string& path);
+
 // ---- Writing ------------------------------------------------------------------------------------
 
 // Calls write(stream) on a temporary file beside `path` ("<path>.tmp<pid>_<n>"), then renames it
