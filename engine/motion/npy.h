@@ -46,6 +46,7 @@ class ZipReader {
  public:
   // Opens the archive in `bytes` (which must outlive the reader). `name` labels errors.
   ZipReader(const std::string& bytes, const std::string& name);
+  ZipReader(std::string&& bytes, const std::string& name) = delete;  // a temporary would not outlive it
   ~ZipReader();
   ZipReader(const ZipReader&) = delete;
   ZipReader& operator=(const ZipReader&) = delete;
