@@ -52,6 +52,20 @@ Audio bursts(int rate, const std::vector<double>& times, double seconds, double 
   return a;
 }
 
+// The overload that takes the audio gives the same envelope and frees the samples (at the
+// analysis rate, and after resampling from another rate).
+TEST(Onsets, TakingTheAudioGivesTheSameEnvelopeAndReleasesIt) {
+  for (const int rate : {22050, 16000}) {
+    const Audio a = bursts(rate, {0.5, 1.2, 2.0}, 3.0, 0.01);
+    const std::vector<float> kept = onset_strength_envelope(a);
+    Audio taken = a;
+    const std::vector<float> moved = onset_strength_envelope(std::move(taken));
+    EXPECT_EQ(moved, kept) << rate;
+    EXPECT_TRUE(taken.samples.empty()) << rate;  // NOLINT(bugprone-use-after-move): that is the contract
+    EXPECT_EQ(taken.samples.capacity(), 0u) << rate;
+  }
+}
+
 TEST(Onsets, SilenceHasNone) {
   Audio a;
   a.sample_rate = 22050;
