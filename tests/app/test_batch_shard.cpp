@@ -17,6 +17,7 @@
 #include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -188,19 +189,11 @@ TEST(BatchShard, ParsesKOfN) {
     EXPECT_THROW(parse_batch_shard(bad), Error) << bad;
 }
 
-int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
-  args.insert(args.begin(), "gmg");
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  const int code = cli_main(static_cast<int>(args.size()), argv.data());
-  ::testing::internal::GetCapturedStdout();
-  const std::string err = ::testing::internal::GetCapturedStderr();
-  if (out) *out = err;
-  return code;
+// Exit code of `gmg args...`; *err gets what it printed on stderr.
+int run_cli(std::vector<std::string> args, std::string* err = nullptr) {
+  const testing::CliRun r = testing::run_gmg(std::move(args));
+  if (err) *err = r.err;
+  return r.code;
 }
 
 TEST_F(ShardData, GraphIsLoadedOnceAndEveryClipEqualsReenactFromIt) {

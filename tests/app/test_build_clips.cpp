@@ -10,6 +10,7 @@
 #include "engine/app/synth/synth.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -17,19 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Exit code of `gmg args...`; *err gets what it printed on stderr.
 int run(std::vector<std::string> args, std::string* err = nullptr) {
-  args.insert(args.begin(), "gmg");
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  const int code = cli_main(static_cast<int>(args.size()), argv.data());
-  ::testing::internal::GetCapturedStdout();
-  const std::string e = ::testing::internal::GetCapturedStderr();
-  if (err) *err = e;
-  return code;
+  const testing::CliRun r = testing::run_gmg(std::move(args));
+  if (err) *err = r.err;
+  return r.code;
 }
 
 // A short synthetic clip (BVH + WAV + TSV) named `stem` in `dir`; returns its frame count.

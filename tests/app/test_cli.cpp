@@ -14,31 +14,16 @@
 #include "engine/app/config.h"
 #include "engine/core/strings.h"
 #include "engine/motion/motion_file.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_support.h"
 #include "text/transcript.h"
 
 namespace gmg {
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using testing::CliRun;
 
-// Runs `gmg args...` through cli_main, capturing what it prints.
-CliRun run(std::vector<std::string> args) {
-  args.insert(args.begin(), "gmg");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  CliRun r;
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  r.code = cli_main(static_cast<int>(args.size()), argv.data());
-  r.out = ::testing::internal::GetCapturedStdout();
-  r.err = ::testing::internal::GetCapturedStderr();
-  return r;
-}
+CliRun run(std::vector<std::string> args) { return testing::run_gmg(std::move(args)); }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

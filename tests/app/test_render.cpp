@@ -29,6 +29,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/motion/bvh.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_support.h"
 
 extern char** environ;
@@ -109,25 +110,9 @@ void write_tone(const std::string& path, int samples, int rate) {
   audio::write_wav_pcm16(path, a);
 }
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using testing::CliRun;
 
-CliRun run_cli(std::vector<std::string> args) {
-  args.insert(args.begin(), "gmg");
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  CliRun r;
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  r.code = cli_main(static_cast<int>(args.size()), argv.data());
-  r.out = ::testing::internal::GetCapturedStdout();
-  r.err = ::testing::internal::GetCapturedStderr();
-  return r;
-}
+CliRun run_cli(std::vector<std::string> args) { return testing::run_gmg(std::move(args)); }
 
 std::vector<std::string> folder_listing(const fs::path& dir) {
   std::vector<std::string> names;
