@@ -20,8 +20,8 @@ std::vector<int> natural_continuation(const MotionGraph& g, int from, const Beam
       best_error = error;
     }
   }
-  std::vector<int> path;
-  for (int k = 0; k < best; ++k) path.push_back(from + k);
+  std::vector<int> path(static_cast<std::size_t>(std::max(best, 0)));
+  for (int k = 0; k < best; ++k) path[static_cast<std::size_t>(k)] = from + k;
   return path;
 }
 

@@ -122,7 +122,9 @@ Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*fi
           [=, &table](const Config& c) { return std::string(enum_name(table, (c.*group).*field)); }};
 }
 
-const std::vector<Accessor>& accessors() {
+// One table of every key, in the order `gmg config` prints them: its length is the number of
+// keys, not complexity.
+const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
   static const std::vector<Accessor> table = {
       number_key("lambda_pos", "weight of joint positions in the pose distance", &Config::graph,
                  &GraphParams::lambda_pos),

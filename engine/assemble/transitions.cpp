@@ -142,6 +142,25 @@ double largest_root_step(const Motion& m, const std::vector<char>& continues) {
   return largest;
 }
 
+// Where the old source would have gone one frame after `p` (its last played frame, whose pose
+// and velocity were `previous`, `previous_vel`): on along its own capture when it can, else on at
+// its last velocity.
+void old_source_next(const SourceReader& reader, const SourceClock& p, const Pose& previous,
+                     const Velocity& previous_vel, Pose& out_pose, Velocity& out_vel) {
+  const int from = static_cast<int>(std::floor(p.time));
+  if (p.rate > 0.0 && reader.readable(p.time + p.rate, from)) {
+    reader.sample(p.time + p.rate, out_pose);
+    reader.velocity(p.time + p.rate, p.rate, out_pose, out_vel);
+    return;
+  }
+  out_pose = previous;
+  for (std::size_t j = 0; j < out_pose.rot.size(); ++j) {
+    out_pose.rot[j] = expmap_to_quat(previous_vel.ang[j]) * previous.rot[j];
+    out_pose.tr[j] = previous.tr[j] + previous_vel.lin[j];
+  }
+  out_vel = previous_vel;
+}
+
 }  // namespace
 
 Motion assemble_inertialized(const Motion& source, const std::vector<char>& continues,
@@ -172,21 +191,7 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
         off.relax_anchor(anchor_factor, 0.5 * std::max(0.0, root_step_limit - std::hypot(d.x, d.z)));
       }
       if (c.run != clock[i - 1].run) {
-        // Where the old source would have gone: on along its own capture when it can, else on
-        // at its last velocity.
-        const SourceClock& p = clock[i - 1];
-        const int from = static_cast<int>(std::floor(p.time));
-        if (p.rate > 0.0 && reader.readable(p.time + p.rate, from)) {
-          reader.sample(p.time + p.rate, old_pose);
-          reader.velocity(p.time + p.rate, p.rate, old_pose, old_vel);
-        } else {
-          old_pose = previous;
-          for (std::size_t j = 0; j < old_pose.rot.size(); ++j) {
-            old_pose.rot[j] = expmap_to_quat(previous_vel.ang[j]) * previous.rot[j];
-            old_pose.tr[j] = previous.tr[j] + previous_vel.lin[j];
-          }
-          old_vel = previous_vel;
-        }
+        old_source_next(reader, clock[i - 1], previous, previous_vel, old_pose, old_vel);
         reader.velocity(c.time, c.rate, dst, dst_vel);
         off.transition(old_pose, old_vel, dst, dst_vel, anchor_root);
       }

@@ -87,7 +87,11 @@ void motion_lock_and_smooth(Motion& m, const std::vector<std::string>& joints, i
                             const std::string& what) {
   for (const std::string& name : joints) {
     const int j = m.skeleton.find(name);
-    if (j < 0) throw Error(what + ": clean-up joint '" + name + "' is not in the skeleton");
+    if (j < 0) {
+      std::string message = what;
+      message += ": clean-up joint '" + name + "' is not in the skeleton";
+      throw Error(message);
+    }
     const glm::dvec3 axis = bone_axis(m.skeleton, j);
     std::vector<double> twist(static_cast<std::size_t>(m.frame_count));
     for (int f = 0; f < m.frame_count; ++f) {

@@ -144,6 +144,7 @@ std::unique_ptr<TempDir> BatchData::dir_;
 TEST(BatchDraw, IsSeededReproducibleAndNeverPairsAClipWithItself) {
   const std::vector<std::string> pool = {"a", "b", "c", "d"};
   std::vector<std::string> tests;
+  tests.reserve(200);
   for (int i = 0; i < 200; ++i) tests.push_back("t" + std::to_string(1000 + i));
   tests.push_back("b");
   const auto d1 = batch_draw_references(tests, pool, 7);
@@ -422,6 +423,7 @@ int run_cli(std::vector<std::string> args) {
   add_batch_command(app, &code);
   args.insert(args.begin(), "gmg");
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   app.parse(static_cast<int>(argv.size()), argv.data());
   return code;

@@ -59,7 +59,8 @@ TEST_F(Evaluate, SynIsMeasuredAgainstTheGivenTruth) {
     for (Eigen::Index k = 0; k < pa.cols() / 3; ++k)
       sum += std::abs((pa.block<1, 3>(t, 3 * k) - pa.block<1, 3>(t - 1, 3 * k)).norm() -
                       (pb.block<1, 3>(t, 3 * k) - pb.block<1, 3>(t - 1, 3 * k)).norm());
-  const double expected = sum / static_cast<double>((pa.rows() - 1) * (pa.cols() / 3)) * a.fps;
+  const Eigen::Index joints = pa.cols() / 3;  // whole: three columns per joint
+  const double expected = sum / static_cast<double>((pa.rows() - 1) * joints) * a.fps;
   EXPECT_GT(expected, 1.0);
   EXPECT_NEAR(j["syn"].get<double>(), expected, 1e-9 * expected);
 }

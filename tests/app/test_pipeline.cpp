@@ -14,6 +14,7 @@
 #include "engine/motion/bvh.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -23,12 +24,7 @@ using namespace gmg::testing;
 
 // ---- the whole pipeline through the command line ----
 
-int run_cli(std::vector<std::string> args) {
-  std::vector<char*> argv;
-  args.insert(args.begin(), "gmg");
-  for (std::string& a : args) argv.push_back(a.data());
-  return cli_main(static_cast<int>(argv.size()), argv.data());
-}
+int run_cli(std::vector<std::string> args) { return run_gmg(std::move(args)).code; }
 
 class SynthPipeline : public ::testing::Test {
  protected:

@@ -37,7 +37,8 @@ std::vector<glm::dvec3> joint_track(const gmg::Motion& m, int j) {
   const Eigen::MatrixXd p = gmg::motion_forward_kinematics(m);
   std::vector<glm::dvec3> out(static_cast<std::size_t>(m.frame_count));
   for (int f = 0; f < m.frame_count; ++f)
-    out[static_cast<std::size_t>(f)] = {p(f, 3 * j), p(f, 3 * j + 1), p(f, 3 * j + 2)};
+    out[static_cast<std::size_t>(f)] = {p(f, 3 * Eigen::Index{j}), p(f, 3 * Eigen::Index{j} + 1),
+                                        p(f, 3 * Eigen::Index{j} + 2)};
   return out;
 }
 
@@ -349,7 +350,8 @@ TEST(Synth, MotionIsSmoothVisibleAndFollowsStress) {
     double worst = 0;
     for (int f = 1; f < m.frame_count; ++f)
       for (int j = 0; j < m.joint_count(); ++j)
-        worst = std::max(worst, (p.block(f, 3 * j, 1, 3) - p.block(f - 1, 3 * j, 1, 3)).norm());
+        worst =
+            std::max(worst, (p.block(f, 3 * Eigen::Index{j}, 1, 3) - p.block(f - 1, 3 * Eigen::Index{j}, 1, 3)).norm());
     EXPECT_LT(worst, 5.0);
   }
 }

@@ -17,11 +17,12 @@ using namespace gmg::testing;
 // 1.5 rad, so a jump from frame 40 to frame 140 turns the arm by 1.5 rad at the same speed.
 Motion two_takes() {
   std::vector<double> a;
+  a.reserve(200);
   for (int f = 0; f < 200; ++f) a.push_back((f < 100 ? 0.0 : 1.5) + 0.02 * (f % 100));
   return arm_motion(a);
 }
 
-std::vector<char> continues_except(int frames, std::vector<int> breaks) {
+std::vector<char> continues_except(int frames, const std::vector<int>& breaks) {
   std::vector<char> c(static_cast<std::size_t>(frames), 1);
   for (int b : breaks) c[static_cast<std::size_t>(b)] = 0;
   return c;
@@ -143,7 +144,7 @@ TEST(Transitions, PlantedFeetStayWhereTheyAre) {
   const std::vector<PathPiece> pieces = {run(0, 50), run(150, 50)};
   const Motion out = assemble_inertialized(src, continues_except(200, {99, 199}), pieces, params);
   const Eigen::MatrixXd p = motion_forward_kinematics(out);
-  const int left = legs[0].ankle;
+  const Eigen::Index left = legs[0].ankle;
   for (int f = 1; f < 100; ++f) EXPECT_LT((p.block<1, 3>(f, 3 * left) - p.block<1, 3>(0, 3 * left)).norm(), 1e-6) << f;
   // Without the lock the left foot glides to the second stance.
   params.foot_lock = false;

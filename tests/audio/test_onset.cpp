@@ -69,7 +69,7 @@ TEST(Onsets, TakingTheAudioGivesTheSameEnvelopeAndReleasesIt) {
 TEST(Onsets, SilenceHasNone) {
   Audio a;
   a.sample_rate = 22050;
-  a.samples.assign(22050 * 3, 0.0f);
+  a.samples.assign(std::size_t{22050} * 3, 0.0f);
   OnsetAnalysis r = gmg::audio::detect_onsets(a, OnsetParams{});
   EXPECT_EQ(r.envelope.size(), 1u + a.samples.size() / 512);
   for (float v : r.envelope) EXPECT_EQ(v, 0.0f);

@@ -11,6 +11,7 @@ using namespace gmg::testing;
 
 TEST(Breaks, CaptureJumpBecomesABreak) {
   std::vector<double> x;
+  x.reserve(50);
   for (int i = 0; i < 50; ++i) x.push_back(0.01 * i + (i >= 25 ? 5.0 : 0.0));
   const PoseFeatures f = line_features(x);
   const std::vector<int> jumps = capture_jump_frames(f, GraphParams{});

@@ -89,6 +89,7 @@ TEST(Continuity, NoTwoTransitionsNearEachOtherOnAStillPose) {
   // A still pose (all frames identical except the tiny drift that makes thresholds positive):
   // x_i = 1e-3 * i. Every frame is within threshold of many others, in one long run.
   std::vector<double> x;
+  x.reserve(60);
   for (int i = 0; i < 60; ++i) x.push_back(1e-3 * (i % 3));
   const PoseFeatures f = line_features(x);
   GraphParams p;
@@ -115,6 +116,7 @@ TEST(Continuity, NoTwoTransitionsNearEachOtherOnAStillPose) {
 
 TEST(Continuity, WeakPruningKeepsMoreEdges) {
   std::vector<double> x;
+  x.reserve(200);
   for (int i = 0; i < 200; ++i) x.push_back(std::sin(i * 0.3));
   const PoseFeatures f = line_features(x);
   GraphParams strong;

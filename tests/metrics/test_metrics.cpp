@@ -19,7 +19,7 @@ using PointFn = std::function<Eigen::Vector3d(int frame, int joint)>;
 Eigen::MatrixXd make_motion(int frames, int joints, const PointFn& f) {
   Eigen::MatrixXd m(frames, 3 * joints);
   for (int t = 0; t < frames; ++t)
-    for (int j = 0; j < joints; ++j) m.block<1, 3>(t, 3 * j) = f(t, j).transpose();
+    for (int j = 0; j < joints; ++j) m.block<1, 3>(t, 3 * Eigen::Index{j}) = f(t, j).transpose();
   return m;
 }
 

@@ -26,6 +26,7 @@ TEST(SavitzkyGolay, FivePointQuadraticWeightsAreTheClassicTable) {
 
 TEST(SavitzkyGolay, PreservesCubicsEverywhereIncludingEdges) {
   std::vector<double> x;
+  x.reserve(40);
   for (int i = 0; i < 40; ++i) x.push_back(0.002 * i * i * i - 0.1 * i * i + i - 3.0);
   const std::vector<double> y = savgol_filter(x, 15, 3);
   for (std::size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(y[i], x[i], 1e-8) << i;

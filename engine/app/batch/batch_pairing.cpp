@@ -67,7 +67,11 @@ Pairing manifest_pairing(const std::vector<std::string>& test_stems, const std::
                          const std::set<std::string>& blacklist) {
   const std::map<std::string, std::string> pairs = read_pairs(manifest, true);
   for (const auto& [t, r] : pairs)
-    if (!clips.tests.count(t)) throw Error(manifest + ": test clip '" + t + "' is not among the test clips");
+    if (!clips.tests.count(t)) {
+      std::string message = manifest;
+      message += ": test clip '" + t + "' is not among the test clips";
+      throw Error(message);
+    }
   Pairing p;
   p.test_stems = test_stems;
   p.references.resize(test_stems.size());
