@@ -34,7 +34,11 @@ TemporarySlot g_temporaries[kSlots];
 
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
-extern "C" void cleanup_and_die(int sig) {
+extern "C" void cleanup_and_die(int sig) { remove_temporaries_and_die(sig); }
+
+}  // namespace
+
+void remove_temporaries_and_die(int sig) noexcept {
   remove_registered_temporary_files();
   struct sigaction dfl {};
   dfl.sa_handler = SIG_DFL;
@@ -42,8 +46,6 @@ extern "C" void cleanup_and_die(int sig) {
   ::sigaction(sig, &dfl, nullptr);
   ::raise(sig);
 }
-
-}  // namespace
 
 int register_temporary_file(const std::string& path) noexcept {
   if (path.size() >= kPathBytes) return -1;
@@ -266,6 +268,8 @@ class FileDescriptor {
   }
   FileDescriptor(const FileDescriptor&) = delete;
   FileDescriptor& operator=(const FileDescriptor&) = delete;
+  FileDescriptor(FileDescriptor&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+  FileDescriptor& operator=(FileDescriptor&&) = delete;
   int get() const { return fd_; }
 
  private:
@@ -295,26 +299,34 @@ void check_input_file(const std::string& path) {
   if (::stat(path.c_str(), &st) == 0) refuse_non_regular(path, st.st_mode);
 }
 
-void check_readable_file(const std::string& path) {
+namespace {
+
+// Opens a regular file for reading; *out_size gets its size. Anything else is refused before
+// the open, and O_NONBLOCK makes the open return at once should the file have become a FIFO
+// since the check (fstat then refuses it).
+FileDescriptor open_regular(const std::string& path, std::size_t* out_size) {
   check_input_file(path);
-  const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
   if (fd.get() < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
   struct stat st {};
   if (::fstat(fd.get(), &st) != 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
   refuse_non_regular(path, st.st_mode);
+  *out_size = static_cast<std::size_t>(st.st_size);
+  return fd;
+}
+
+}  // namespace
+
+void check_readable_file(const std::string& path) {
+  std::size_t size = 0;
+  open_regular(path, &size);
 }
 
 std::string read_file_bytes(const std::string& path) {
-  check_input_file(path);
-  // O_NONBLOCK: should the file have become a FIFO since the check, the open still returns at
-  // once, and fstat below refuses it.
-  const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
-  if (fd.get() < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  refuse_non_regular(path, st.st_mode);
-  return naming_memory_errors(path, "reading " + std::to_string(st.st_size) + " bytes",
-                              [&] { return read_all(path, fd.get(), static_cast<std::size_t>(st.st_size)); });
+  std::size_t size = 0;
+  const FileDescriptor fd = open_regular(path, &size);
+  return naming_memory_errors(path, "reading " + std::to_string(size) + " bytes",
+                              [&] { return read_all(path, fd.get(), size); });
 }
 
 }  // namespace gmg

@@ -96,6 +96,9 @@ int register_temporary_file(const std::string& path) noexcept;
 void unregister_temporary_file(int slot) noexcept;
 // Unlinks every registered file. Async-signal-safe (unlink(2) on a fixed array): for handlers.
 void remove_registered_temporary_files() noexcept;
+// Removes them and ends the process as `sig` would, its handler reset to the default.
+// Async-signal-safe: for handlers.
+void remove_temporaries_and_die(int sig) noexcept;
 
 // While alive, SIGINT, SIGTERM and SIGHUP remove the registered temporary files and then end the
 // process as the signal would (the previous handlers are restored on destruction). cli_main

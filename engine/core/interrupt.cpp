@@ -12,12 +12,7 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the handler sets it");
 
 extern "C" void on_interrupt(int sig) {
   if (g_raised.load()) {  // second signal: die the ordinary way, leaving no temporary file
-    remove_registered_temporary_files();
-    struct sigaction dfl {};
-    dfl.sa_handler = SIG_DFL;
-    sigemptyset(&dfl.sa_mask);
-    ::sigaction(sig, &dfl, nullptr);
-    ::raise(sig);
+    remove_temporaries_and_die(sig);
     return;
   }
   g_raised.store(true);
