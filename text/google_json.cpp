@@ -17,16 +17,13 @@
 namespace gmg::text {
 
 using detail::format_seconds;
+using detail::json_fail;
 using detail::quote_field;
 using detail::sort_words;
 
 namespace {
 
 using nlohmann::json;
-
-[[noreturn]] void json_fail(const std::string& path, const std::string& where, const std::string& what) {
-  throw Error(path + ": " + (where.empty() ? "" : where + ": ") + what);
-}
 
 double json_time(const json& v, const std::string& path, const std::string& where) {
   auto number_of = [&](const json& x, const std::string& w, bool allow_suffix) -> double {

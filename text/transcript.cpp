@@ -25,6 +25,10 @@ void sort_words(std::vector<Word>& words) {
   std::stable_sort(words.begin(), words.end(), [](const Word& a, const Word& b) { return a.start < b.start; });
 }
 
+void json_fail(const std::string& path, const std::string& where, const std::string& what) {
+  throw Error(path + ": " + (where.empty() ? "" : where + ": ") + what);
+}
+
 std::string quote_field(std::string_view s) {
   std::string out(s.substr(0, 60));
   if (s.size() > 60) out += "...";

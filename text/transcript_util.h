@@ -1,4 +1,4 @@
-// Internal helpers shared by the transcript readers (tsv.cpp, textgrid.cpp, google_json.cpp).
+// Internal helpers shared by the transcript readers (tsv, textgrid, google_json, whisper_json).
 // Not part of the public API (namespace gmg::text::detail).
 #pragma once
 
@@ -23,5 +23,9 @@ std::string quote_field(std::string_view s);
 // True when a field that failed to parse as a number names a non-finite one ("nan", "-inf",
 // "+Infinity", ASCII case-insensitive), so the message can say "not a finite number".
 bool names_non_finite(std::string_view field);
+
+// Throws gmg::Error "path: where: what" for a JSON transcript ("path: what" when where is
+// empty); `where` is the JSON location, e.g. "segments[3].words[2]".
+[[noreturn]] void json_fail(const std::string& path, const std::string& where, const std::string& what);
 
 }  // namespace gmg::text::detail

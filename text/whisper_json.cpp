@@ -18,16 +18,13 @@
 namespace gmg::text {
 
 using detail::format_seconds;
+using detail::json_fail;
 using detail::quote_field;
 using detail::sort_words;
 
 namespace {
 
 using nlohmann::json;
-
-[[noreturn]] void fail(const std::string& path, const std::string& where, const std::string& what) {
-  throw Error(path + ": " + where + ": " + what);
-}
 
 // A word as the file gives it: times may be missing (WhisperX leaves out the times of words its
 // aligner has no characters for, such as numbers written as digits).
@@ -39,27 +36,28 @@ struct RawWord {
 std::optional<double> optional_time(const json& w, const char* key, const std::string& path, const std::string& where) {
   const auto it = w.find(key);
   if (it == w.end() || it->is_null()) return std::nullopt;
-  if (!it->is_number()) fail(path, where + "." + key, "expected a number of seconds, found " + it->dump());
+  if (!it->is_number()) json_fail(path, where + "." + key, "expected a number of seconds, found " + it->dump());
   const double t = it->get<double>();
-  if (!std::isfinite(t)) fail(path, where + "." + key, "time is not finite");
-  if (t < 0) fail(path, where + "." + key, "negative time " + format_seconds(t));
+  if (!std::isfinite(t)) json_fail(path, where + "." + key, "time is not finite");
+  if (t < 0) json_fail(path, where + "." + key, "negative time " + format_seconds(t));
   return t;
 }
 
 RawWord raw_word(const json& w, const std::string& path, const std::string& where) {
-  if (!w.is_object()) fail(path, where, "expected a word object");
+  if (!w.is_object()) json_fail(path, where, "expected a word object");
   const auto text = w.find("word");
-  if (text == w.end()) fail(path, where, "missing \"word\"");
-  if (!text->is_string()) fail(path, where + ".word", "expected a string");
+  if (text == w.end()) json_fail(path, where, "missing \"word\"");
+  if (!text->is_string()) json_fail(path, where + ".word", "expected a string");
   RawWord r{optional_time(w, "start", path, where), optional_time(w, "end", path, where),
             std::string(trim(text->get_ref<const std::string&>()))};
   if (r.start.has_value() != r.end.has_value())
-    fail(path, where,
-         std::string("has \"") + (r.start ? "start" : "end") + "\" but no \"" + (r.start ? "end" : "start") + "\"");
+    json_fail(
+        path, where,
+        std::string("has \"") + (r.start ? "start" : "end") + "\" but no \"" + (r.start ? "end" : "start") + "\"");
   if (r.start && *r.end < *r.start)
-    fail(path, where,
-         "word " + quote_field(r.text) + " ends (" + format_seconds(*r.end) + " s) before it starts (" +
-             format_seconds(*r.start) + " s)");
+    json_fail(path, where,
+              "word " + quote_field(r.text) + " ends (" + format_seconds(*r.end) + " s) before it starts (" +
+                  format_seconds(*r.start) + " s)");
   return r;
 }
 
@@ -94,7 +92,7 @@ void append_sequence(const std::vector<RawWord>& seq, std::optional<double> lo, 
 }
 
 std::vector<RawWord> raw_words(const json& list, const std::string& path, const std::string& where) {
-  if (!list.is_array()) fail(path, where, "expected an array of words");
+  if (!list.is_array()) json_fail(path, where, "expected an array of words");
   std::vector<RawWord> out;
   for (std::size_t k = 0; k < list.size(); ++k)
     out.push_back(raw_word(list[k], path, where + "[" + std::to_string(k) + "]"));
@@ -103,12 +101,12 @@ std::vector<RawWord> raw_words(const json& list, const std::string& path, const 
 
 // segments[].words[]; false when no segment has "words" (Whisper run without word timestamps).
 bool segment_words(const json& segments, const std::string& path, std::vector<Word>& out) {
-  if (!segments.is_array()) fail(path, "segments", "expected an array of segments");
+  if (!segments.is_array()) json_fail(path, "segments", "expected an array of segments");
   bool any = false;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const json& s = segments[i];
     const std::string where = "segments[" + std::to_string(i) + "]";
-    if (!s.is_object()) fail(path, where, "expected a segment object");
+    if (!s.is_object()) json_fail(path, where, "expected a segment object");
     const auto words = s.find("words");
     if (words == s.end() || words->is_null()) continue;
     any = true;
