@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
-#include <thread>
 
 #include "engine/core/error.h"
 #include "graph/neighbours.h"
@@ -60,11 +59,10 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
   std::vector<Transition> edges;
   if (n < 2) return edges;
   const std::vector<double> theta = continuity_thresholds(f, run_end, params);
-  const int workers = static_cast<int>(std::max(1u, std::min(4u, std::thread::hardware_concurrency())));
   GraphParams bounded = params;
   bounded.max_transitions = graph_transition_bound(params, n);
   const std::unique_ptr<CandidateFinder> finder =
-      make_candidate_finder(f, theta, bounded, neighbour_search_for(params, n), workers);
+      make_candidate_finder(f, theta, bounded, neighbour_search_for(params, n), candidate_search_workers());
   const int step = finder->block_size();
   if (bounded.max_transitions > 0) edges.reserve(static_cast<std::size_t>(n) * 4);
 

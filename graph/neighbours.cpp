@@ -1,16 +1,18 @@
 #include "graph/neighbours.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <thread>
 
 #include <Eigen/Eigenvalues>
 
+#include "engine/core/parallel.h"
+
 namespace gmg {
 namespace {
+
+// The candidate search's own bound on threads (see candidate_search_workers).
+constexpr int kMaxCandidateWorkers = 4;
 
 struct Candidate {
   float d;  // d(l, r) in single precision
@@ -198,19 +200,6 @@ class Gathered {
 
 using Lists = std::vector<std::vector<int>>;
 
-// Runs task(i) for i in [0, count) on `workers` threads (the caller's included), handing out
-// indices one at a time so uneven tasks balance.
-void parallel_for(int count, int workers, const std::function<void(int, int)>& task) {
-  std::atomic<int> next{0};
-  auto run = [&](int worker) {
-    for (int i = next++; i < count; i = next++) task(i, worker);
-  };
-  std::vector<std::thread> threads;
-  for (int w = 1; w < std::min(workers, count); ++w) threads.emplace_back(run, w);
-  run(0);
-  for (std::thread& t : threads) t.join();
-}
-
 // Whether l -> r may be a transition: not itself, not the natural successor (or, across a break,
 // nothing), not a stutter within l_pn when exclude_near.
 struct Allowed {
@@ -261,8 +250,8 @@ class ExactFinder : public CandidateFinder {
     for (auto& w : local)
       for (int i = 0; i < count; ++i) w.emplace_back(radius_(first + i), k_);
     if (tiles_.size() < static_cast<std::size_t>(workers_)) tiles_.resize(static_cast<std::size_t>(workers_));
-    parallel_for(right_blocks, workers_, [&](int b, int worker) {
-      const int r0 = first + b * kRight;
+    parallel_for(static_cast<std::size_t>(right_blocks), workers_, [&](std::size_t b, int worker) {
+      const int r0 = first + static_cast<int>(b) * kRight;
       tile(first, count, r0, std::min(kRight, n - r0), local[static_cast<std::size_t>(worker)],
            tiles_[static_cast<std::size_t>(worker)]);
     });
@@ -365,8 +354,9 @@ class TreeFinder : public CandidateFinder {
     out.assign(static_cast<std::size_t>(count), {});
     if (scratch_.size() < static_cast<std::size_t>(workers_)) scratch_.resize(static_cast<std::size_t>(workers_));
     constexpr int kChunk = 8;
-    parallel_for((count + kChunk - 1) / kChunk, workers_, [&](int chunk, int worker) {
-      for (int i = chunk * kChunk; i < std::min(count, (chunk + 1) * kChunk); ++i)
+    parallel_for(static_cast<std::size_t>((count + kChunk - 1) / kChunk), workers_, [&](std::size_t chunk, int worker) {
+      const int begin = static_cast<int>(chunk) * kChunk;
+      for (int i = begin; i < std::min(count, begin + kChunk); ++i)
         query(first + i, scratch_[static_cast<std::size_t>(worker)], out[static_cast<std::size_t>(i)]);
     });
   }
@@ -512,6 +502,8 @@ int graph_transition_bound(const GraphParams& params, int frames) {
   return small ? 0 : params.max_transitions;
 }
 
+int candidate_search_workers() { return std::min(kMaxCandidateWorkers, worker_count(0)); }
+
 int candidate_limit(const GraphParams& params) {
   if (params.max_transitions == 0) return 0;
   const long long k = static_cast<long long>(params.max_transitions) * params.candidates_per_transition;
@@ -529,8 +521,8 @@ std::unique_ptr<CandidateFinder> make_candidate_finder(const PoseFeatures& featu
 std::vector<std::vector<int>> candidate_sets(const PoseFeatures& features, const std::vector<double>& theta,
                                              const GraphParams& params, NeighbourSearch search) {
   const int n = features.frame_count();
-  const int workers = static_cast<int>(std::max(1u, std::min(4u, std::thread::hardware_concurrency())));
-  const std::unique_ptr<CandidateFinder> finder = make_candidate_finder(features, theta, params, search, workers);
+  const std::unique_ptr<CandidateFinder> finder =
+      make_candidate_finder(features, theta, params, search, candidate_search_workers());
   std::vector<std::vector<int>> all, block;
   for (int first = 0; first < n; first += finder->block_size()) {
     finder->next(first, std::min(finder->block_size(), n - first), block);

@@ -46,6 +46,11 @@ class CandidateFinder {
   virtual int block_size() const = 0;
 };
 
+// The threads the candidate search runs on: one per hardware thread (engine/core/parallel.h),
+// at most 4 (every worker keeps its own gathering of a block's left frames, merged after the
+// pass).
+int candidate_search_workers();
+
 // theta[l] is frame l's threshold (graph/continuity.h). `features` and `theta` must outlive the
 // finder.
 std::unique_ptr<CandidateFinder> make_candidate_finder(const PoseFeatures& features, const std::vector<double>& theta,

@@ -11,7 +11,6 @@
 // analysis, search, blending, writing), graphs (built), graph_mean_s / graph_total_s (build
 // times; builds run on the workers, so they overlap), fallbacks_per_clip, failed, setup_s.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -20,13 +19,13 @@
 #include <mutex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "engine/app/batch/batch.h"
 #include "engine/app/synth/synth.h"
+#include "engine/core/parallel.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -61,42 +60,34 @@ const BenchData& bench_data() {
     for (const char* sub : {"bvh", "wav", "tsv"}) fs::create_directories(fs::path(d->pool) / sub);
     fs::create_directories(d->tests);
     fs::create_directories(fs::path(d->pool) / "scratch");
-    std::atomic<int> next{0};
     std::mutex m;
     double ref_total = 0, test_total = 0;
-    auto work = [&] {
-      for (;;) {
-        const int k = next++;
-        if (k >= kReferences + kClips) return;
-        SynthSpec s;
-        if (k < kReferences) {
-          s.duration_s = 160.0 + 20.0 * ((k * 37) % kReferences) / (kReferences - 1);
-          s.seed = 1000 + static_cast<std::uint64_t>(k);
-          s.style = (k % 11) / 10.0;
-          const std::string name = stem("ref_", k);
-          synth_write(synth_speaker(s), (fs::path(d->pool) / "scratch").string(), name);
-          for (const char* ext : {"bvh", "wav", "tsv"})
-            fs::rename(fs::path(d->pool) / "scratch" / (name + "." + ext),
-                       fs::path(d->pool) / ext / (name + "." + ext));
-          std::lock_guard<std::mutex> lock(m);
-          ref_total += s.duration_s;
-        } else {
-          const int i = k - kReferences;
-          s.duration_s = 55.0 + 14.0 * ((i * 29) % kClips) / (kClips - 1);
-          s.seed = 5000 + static_cast<std::uint64_t>(i);
-          s.style = ((i + 5) % 11) / 10.0;
-          const std::string name = stem("test_", i);
-          synth_write(synth_speaker(s), d->tests, name);
-          fs::remove(fs::path(d->tests) / (name + ".bvh"));  // a test clip is speech only
-          std::lock_guard<std::mutex> lock(m);
-          test_total += s.duration_s;
-        }
+    const std::size_t items = kReferences + kClips;
+    parallel_for(items, worker_count(0, items), [&](std::size_t item, int) {
+      const int k = static_cast<int>(item);
+      SynthSpec s;
+      if (k < kReferences) {
+        s.duration_s = 160.0 + 20.0 * ((k * 37) % kReferences) / (kReferences - 1);
+        s.seed = 1000 + static_cast<std::uint64_t>(k);
+        s.style = (k % 11) / 10.0;
+        const std::string name = stem("ref_", k);
+        synth_write(synth_speaker(s), (fs::path(d->pool) / "scratch").string(), name);
+        for (const char* ext : {"bvh", "wav", "tsv"})
+          fs::rename(fs::path(d->pool) / "scratch" / (name + "." + ext), fs::path(d->pool) / ext / (name + "." + ext));
+        std::lock_guard<std::mutex> lock(m);
+        ref_total += s.duration_s;
+      } else {
+        const int i = k - kReferences;
+        s.duration_s = 55.0 + 14.0 * ((i * 29) % kClips) / (kClips - 1);
+        s.seed = 5000 + static_cast<std::uint64_t>(i);
+        s.style = ((i + 5) % 11) / 10.0;
+        const std::string name = stem("test_", i);
+        synth_write(synth_speaker(s), d->tests, name);
+        fs::remove(fs::path(d->tests) / (name + ".bvh"));  // a test clip is speech only
+        std::lock_guard<std::mutex> lock(m);
+        test_total += s.duration_s;
       }
-    };
-    const unsigned n = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> threads;
-    for (unsigned t = 0; t < n; ++t) threads.emplace_back(work);
-    for (std::thread& t : threads) t.join();
+    });
     fs::remove_all(fs::path(d->pool) / "scratch");
     d->pairs_one_to_one = (d->dir.path() / "pairs_one_to_one.csv").string();
     {

@@ -3,12 +3,10 @@
 #include "engine/app/report.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <mutex>
 #include <random>
-#include <thread>
 
 #include "audio/audio_file.h"
 #include "audio/onset.h"
@@ -18,6 +16,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/limits.h"
+#include "engine/core/parallel.h"
 #include "engine/core/strings.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/motion/cleanup.h"
@@ -122,31 +121,23 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs(clips.size());
-  std::vector<std::exception_ptr> errors(clips.size());
-  std::atomic<std::size_t> next{0};
   std::mutex m;
   long done = 0;
   // Clips are independent: read them on several threads, each into its own slot.
-  auto read = [&] {
-    for (std::size_t i = next++; i < clips.size(); i = next++) {
-      try {
-        inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
-                                         [&] { return read_reference(clips[i], config, lexicon); });
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
+  parallel_for(clips.size(), worker_count(jobs, clips.size()), [&](std::size_t i, int) {
+    std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
+    try {
+      inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
+                                       [&] { return read_reference(clips[i], config, lexicon); });
+    } catch (...) {
+      error = std::current_exception();
+    }
+    {
       const std::lock_guard<std::mutex> lock(m);
       if (progress) progress("read", ++done, static_cast<long>(clips.size()));
     }
-  };
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t threads = std::min<std::size_t>(clips.size(), jobs > 0 ? static_cast<std::size_t>(jobs) : cores);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(read);
-  read();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+    if (error) std::rethrow_exception(error);
+  });
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
   return naming_memory_errors(what, "building the graph",
                               [&] { return graph_build(std::move(inputs), config.graph, progress); });

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <sstream>
-#include <thread>
 
 #include "engine/app/batch/batch_internal.h"
 #include "engine/core/error.h"
+#include "engine/core/parallel.h"
 
 namespace gmg {
 namespace {
@@ -122,11 +122,6 @@ std::size_t pending_count(const std::vector<BatchClipResult>& clips) {
       clips.begin(), clips.end(), [](const BatchClipResult& c) { return c.status == BatchClipStatus::Pending; }));
 }
 
-int job_count(const BatchOptions& options) {
-  unsigned jobs = options.jobs > 0 ? static_cast<unsigned>(options.jobs) : std::thread::hardware_concurrency();
-  return jobs == 0 ? 1 : static_cast<int>(jobs);
-}
-
 // The lines before any work: notes, what will be done, the clips already decided. Returns how
 // many clips are already decided (failed or skipped).
 std::size_t announce(const BatchSummary& summary, const Clips& clips, BatchPairing pairing, std::size_t pool_size,
@@ -187,10 +182,9 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
   summary.references = reference_results(clips.pool, pool_stems, summary.clips);
   write_pairs_csv(out_dir, summary.clips);  // first, so the pairing is on record even if the run is interrupted
 
-  summary.jobs = job_count(options);
+  summary.jobs = worker_count(options.jobs);
   const std::size_t finished = announce(summary, clips, pairing, pool_stems.size(), progress);
-  const std::size_t to_do = std::max<std::size_t>(pending_count(summary.clips), 1);
-  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(summary.jobs), to_do);
+  const int workers = worker_count(summary.jobs, pending_count(summary.clips));
   run_clips(summary, RunSetup{options, clip_config, clips.tests, out_dir, progress}, workers, finished);
   progress.finish();
 

@@ -198,10 +198,10 @@ struct RunSetup {
   Progress& progress;
 };
 
-// Makes every pending clip of summary.clips with `worker_count` threads, building each
+// Makes every pending clip of summary.clips with `workers` threads, building each
 // reference of summary.references once, when the first clip needing it starts. `finished` is
 // the count of clips already decided (for the "[k/N]" lines). Stops starting work when
 // options.cancel is raised.
-void run_clips(BatchSummary& summary, const RunSetup& setup, std::size_t worker_count, std::size_t finished);
+void run_clips(BatchSummary& summary, const RunSetup& setup, int workers, std::size_t finished);
 
 }  // namespace gmg::batch_internal

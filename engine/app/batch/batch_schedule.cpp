@@ -5,12 +5,12 @@
 #include <condition_variable>
 #include <deque>
 #include <memory>
-#include <thread>
 
 #include "engine/app/batch/batch_internal.h"
 #include "engine/app/pipeline.h"
 #include "engine/core/files.h"
 #include "engine/core/json.h"
+#include "engine/core/parallel.h"
 #include "engine/motion/bvh.h"
 #include "graph/graph_io.h"
 
@@ -40,12 +40,11 @@ class Scheduler {
     }
   }
 
-  void run(std::size_t worker_count) {
+  // Each of the `workers` items of the pool is one worker's loop: the loops take their clips from
+  // the shared state, in the order graphs become ready.
+  void run(int workers) {
     if (pending_total_ == 0) return;
-    std::vector<std::thread> threads;
-    for (std::size_t w = 1; w < worker_count; ++w) threads.emplace_back([this] { worker(); });
-    worker();
-    for (std::thread& t : threads) t.join();
+    parallel_for(static_cast<std::size_t>(workers), workers, [this](std::size_t, int) { worker(); });
   }
 
  private:
@@ -201,8 +200,8 @@ class Scheduler {
 
 }  // namespace
 
-void run_clips(BatchSummary& summary, const RunSetup& setup, std::size_t worker_count, std::size_t finished) {
-  Scheduler(summary, setup, finished).run(worker_count);
+void run_clips(BatchSummary& summary, const RunSetup& setup, int workers, std::size_t finished) {
+  Scheduler(summary, setup, finished).run(workers);
 }
 
 }  // namespace gmg::batch_internal
