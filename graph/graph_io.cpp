@@ -5,22 +5,17 @@
 //   u32      format version
 //   u64      payload size in bytes
 //   payload  params, skeleton, clips, motion, nodes, edges (see write_payload)
-//   u64      checksum of the payload (Checksum below)
+//   u64      checksum of the payload (engine/core/checksum.h)
 // The large parts are flat arrays in the layout they have in memory (motion samples; the edges
 // in compressed sparse row order: row starts, targets, weights, natural flags), so a load is
 // one pass of copies at memory speed and a save one pass of writes. A file with another magic
 // or version, a short or over-long payload or a wrong checksum is rejected before anything is
 // used.
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 
+#include "engine/core/checksum.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/limits.h"
@@ -34,59 +29,6 @@ namespace {
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
 constexpr std::uint32_t kVersion = 2;
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
-
-// A 64-bit checksum in the manner of XXH64 (four independent multiply-rotate lanes over 32-byte
-// blocks, so it runs at memory speed; version 1's byte-wise FNV-1a took seconds on an hour of
-// reference). Streaming: the result does not depend on how the bytes are split into calls.
-class Checksum {
- public:
-  void add(const void* data, std::size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    total_ += size;
-    if (fill_ > 0) {
-      const std::size_t take = std::min(size, sizeof buffer_ - fill_);
-      std::memcpy(buffer_ + fill_, p, take);
-      fill_ += take;
-      p += take;
-      size -= take;
-      if (fill_ < sizeof buffer_) return;
-      block(buffer_);
-      fill_ = 0;
-    }
-    for (; size >= sizeof buffer_; p += sizeof buffer_, size -= sizeof buffer_) block(p);
-    std::memcpy(buffer_, p, size);
-    fill_ = size;
-  }
-
-  std::uint64_t value() const {
-    std::uint64_t h = rotl(lane_[0], 1) + rotl(lane_[1], 7) + rotl(lane_[2], 12) + rotl(lane_[3], 18);
-    h ^= total_ * kP5;
-    for (std::size_t i = 0; i < fill_; ++i) h = rotl(h ^ (buffer_[i] * kP5), 11) * kP1;
-    h ^= h >> 33;
-    h *= kP2;
-    h ^= h >> 29;
-    h *= kP3;
-    h ^= h >> 32;
-    return h;
-  }
-
- private:
-  static constexpr std::uint64_t kP1 = 11400714785074694791ULL, kP2 = 14029467366897019727ULL,
-                                 kP3 = 1609587929392839161ULL, kP5 = 2870177450012600261ULL;
-  static std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
-  void block(const unsigned char* p) {
-    for (int i = 0; i < 4; ++i) {
-      std::uint64_t w = 0;
-      std::memcpy(&w, p + static_cast<std::ptrdiff_t>(8) * i, 8);
-      lane_[i] = rotl(lane_[i] + w * kP2, 31) * kP1;
-    }
-  }
-
-  std::uint64_t lane_[4] = {kP1 + kP2, kP2, 0, 0 - kP1};
-  unsigned char buffer_[32] = {};
-  std::size_t fill_ = 0;
-  std::uint64_t total_ = 0;
-};
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
 // header's size is known before the first byte is written and nothing is buffered.
@@ -444,53 +386,10 @@ MotionGraph parse_graph(const char* bytes, std::size_t total, const std::string&
                                   " bytes declared, " + std::to_string(present) + " present)"));
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
-  Checksum check;
-  check.add(bytes + kHeader, present);
-  if (sum != check.value()) throw Error(path + ": graph file is damaged (checksum mismatch)");
+  if (sum != checksum_of(bytes + kHeader, present)) throw Error(path + ": graph file is damaged (checksum mismatch)");
   Reader r(bytes + kHeader, present, path);
   return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r); });
 }
-
-// A read-only mapping of a whole file, unmapped on scope exit: the loader reads the page cache
-// directly, without a copy of the file in memory.
-class MappedFile {
- public:
-  explicit MappedFile(const std::string& path) {
-    check_input_file(path);  // a FIFO or a device is refused before the open (which could block)
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
-      const int err = errno;
-      ::close(fd);
-      throw Error(S_ISDIR(st.st_mode) ? path + ": is a folder, not a file"
-                                      : path + ": cannot read (" + std::strerror(err) + ")");
-    }
-    size_ = static_cast<std::size_t>(st.st_size);
-    if (size_ > 0) {
-      void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-      if (p == MAP_FAILED) {
-        const int err = errno;
-        ::close(fd);
-        throw Error(path + ": cannot read (" + std::strerror(err) + ")");
-      }
-      data_ = static_cast<const char*>(p);
-      ::madvise(p, size_, MADV_SEQUENTIAL);
-    }
-    ::close(fd);
-  }
-  ~MappedFile() {
-    if (data_) ::munmap(const_cast<char*>(data_), size_);
-  }
-  MappedFile(const MappedFile&) = delete;
-  MappedFile& operator=(const MappedFile&) = delete;
-  const char* data() const { return data_; }
-  std::size_t size() const { return size_; }
-
- private:
-  const char* data_ = nullptr;
-  std::size_t size_ = 0;
-};
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -97,7 +98,8 @@ void remove_quietly(const std::string& path) {
   fs::remove(path, ec);
 }
 
-// Renames temp to path; throws gmg::Error naming path.
+}  // namespace
+
 void rename_into_place(const std::string& temp, const std::string& path) {
   std::error_code ec;
   fs::rename(temp, path, ec);
@@ -106,8 +108,6 @@ void rename_into_place(const std::string& temp, const std::string& path) {
     throw Error(path + ": cannot rename the finished file into place (" + ec.message() + ")");
   }
 }
-
-}  // namespace
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
   static std::atomic<unsigned> counter{0};
@@ -327,6 +327,19 @@ std::string read_file_bytes(const std::string& path) {
   const FileDescriptor fd = open_regular(path, &size);
   return naming_memory_errors(path, "reading " + std::to_string(size) + " bytes",
                               [&] { return read_all(path, fd.get(), size); });
+}
+
+MappedFile::MappedFile(const std::string& path) {
+  const FileDescriptor fd = open_regular(path, &size_);
+  if (size_ == 0) return;
+  void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd.get(), 0);
+  if (p == MAP_FAILED) throw Error(path + ": cannot read (" + std::strerror(errno) + ")");
+  data_ = static_cast<const char*>(p);
+  ::madvise(p, size_, MADV_SEQUENTIAL);  // readers go through the file once, front to back
+}
+
+MappedFile::~MappedFile() {
+  if (data_) ::munmap(const_cast<char*>(data_), size_);
 }
 
 }  // namespace gmg

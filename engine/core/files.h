@@ -3,6 +3,7 @@
 // interrupted process.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -31,7 +32,31 @@ void check_input_file(const std::string& path);
 // file; reads nothing. For checking every input of a job before its long steps.
 void check_readable_file(const std::string& path);
 
+// A read-only mapping of a whole regular file (opened and refused as read_file_bytes does),
+// unmapped when it goes: a reader takes its bytes from the page cache, without a copy of the
+// file in memory (a graph of an hour of reference is hundreds of MB). An empty file maps to
+// data() == nullptr, size() == 0. Throws gmg::Error "path: what" like read_file_bytes.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::string& path);
+  ~MappedFile();
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  const char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  const char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
 // ---- Writing ------------------------------------------------------------------------------------
+
+// Renames a finished temporary file `temp` to `path` (on the same file system, so the file
+// appears whole or not at all). When the rename fails, temp is removed and gmg::Error naming
+// path is thrown. For writers whose temporary file is made by another program (the video of
+// `gmg render`); the others use write_file_atomically.
+void rename_into_place(const std::string& temp, const std::string& path);
 
 // Calls write(stream) on a temporary file beside `path` ("<path>.tmp<pid>_<n>"), then renames it
 // to `path`. When write throws or the stream fails, the temporary file is removed, `path` is

@@ -124,6 +124,49 @@ TEST(Files, ReadRefusesADevice) {
   check_input_file("/no/such/file");  // a missing file is left to the reader's "cannot open"
 }
 
+TEST(Files, MappedFileHoldsEveryByte) {
+  TempDir dir;
+  std::string bytes(70000, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 13 % 256);
+  write_text(dir.file("g.gmg"), bytes);
+  const MappedFile file(dir.file("g.gmg"));
+  ASSERT_EQ(file.size(), bytes.size());
+  EXPECT_EQ(std::string(file.data(), file.size()), bytes);
+  write_text(dir.file("empty"), "");
+  const MappedFile empty(dir.file("empty"));
+  EXPECT_EQ(empty.size(), 0u);
+  EXPECT_EQ(empty.data(), nullptr);
+}
+
+TEST(Files, MappedFileRefusesWhatTheReaderRefuses) {
+  TempDir dir;
+  const std::string missing = dir.file("x.gmg");
+  EXPECT_EQ(error_of([&] { MappedFile f(missing); }), missing + ": cannot open (No such file or directory)");
+  EXPECT_EQ(error_of([&] { MappedFile f(dir.path().string()); }), dir.path().string() + ": is a folder, not a file");
+  EXPECT_EQ(error_of([] { MappedFile f("/dev/null"); }), "/dev/null: is a character device, not a regular file");
+  const std::string fifo = dir.file("pipe.gmg");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_EQ(error_of([&] { MappedFile f(fifo); }), fifo + ": is a FIFO (named pipe), not a regular file");
+}
+
+TEST(Files, RenameIntoPlaceReplacesTheFile) {
+  TempDir dir;
+  write_text(dir.file("out.mp4"), "old");
+  write_text(dir.file("out.tmp1.mp4"), "new");
+  rename_into_place(dir.file("out.tmp1.mp4"), dir.file("out.mp4"));
+  EXPECT_EQ(read_file_bytes(dir.file("out.mp4")), "new");
+  EXPECT_EQ(entries_in(dir.path()), 1u);
+}
+
+TEST(Files, RenameIntoPlaceFailureRemovesTheTemporaryFile) {
+  TempDir dir;
+  write_text(dir.file("out.tmp1.mp4"), "new");
+  const std::string target = dir.file("no/such/folder/out.mp4");
+  const std::string msg = error_of([&] { rename_into_place(dir.file("out.tmp1.mp4"), target); });
+  EXPECT_EQ(msg.rfind(target + ": cannot rename the finished file into place (", 0), 0u) << msg;
+  EXPECT_EQ(entries_in(dir.path()), 0u);
+}
+
 TEST(Files, OutputsApartFromInputs) {
   TempDir dir;
   const std::string in = dir.file("in.bvh"), other = dir.file("other.bvh");

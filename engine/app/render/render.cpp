@@ -7,6 +7,7 @@
 
 #include "engine/app/render/encoder.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/interrupt.h"
 #include "engine/core/strings.h"
 
@@ -79,13 +80,7 @@ RenderSummary render_video(const RenderInputs& in, const RenderOptions& options)
   e.crf = options.crf;
   e.preset = options.preset;
   encode(scene, e);
-  std::error_code ec;
-  fs::rename(e.output, in.output, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(e.output, ignored);
-    throw Error(in.output + ": cannot rename the finished video into place (" + ec.message() + ")");
-  }
+  rename_into_place(e.output, in.output);
   RenderSummary r;
   r.frames = scene.frame_count;
   r.fps = scene.fps;
