@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -42,28 +42,17 @@ std::vector<Unit> classify(const std::string& w) {
       ++i;
       continue;
     }
-    // A multi-byte UTF-8 sequence (a malformed one is taken byte by byte, as a word character).
-    std::size_t len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1;
-    bool ok = len > 1 && i + len <= w.size();
-    std::uint32_t cp = 0;
-    if (ok) {
-      cp = c & (len == 2 ? 0x1F : len == 3 ? 0x0F : 0x07);
-      for (std::size_t k = 1; k < len; ++k) {
-        auto cc = static_cast<unsigned char>(w[i + k]);
-        if ((cc & 0xC0) != 0x80) {
-          ok = false;
-          break;
-        }
-        cp = (cp << 6) | (cc & 0x3F);
-      }
-    }
-    if (!ok) {
+    // A multi-byte UTF-8 character; bytes that do not form one (decode_utf8: also overlong forms
+    // and surrogates) are taken one by one, as word characters.
+    const std::optional<Utf8Char> ch = decode_utf8(w, i);
+    if (!ch) {
       units.push_back({Kind::WordChar, std::string(1, static_cast<char>(c))});
       ++i;
       continue;
     }
-    std::string seq = w.substr(i, len);
-    i += len;
+    const char32_t cp = ch->code_point;
+    std::string seq = w.substr(i, ch->length);
+    i += ch->length;
     switch (cp) {
       case 0x2018:
       case 0x2019:

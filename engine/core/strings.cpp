@@ -92,37 +92,48 @@ std::string format_number(double v) {
   return out;
 }
 
+std::optional<Utf8Char> decode_utf8(std::string_view s, std::size_t pos) {
+  if (pos >= s.size()) return std::nullopt;
+  auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(pos);
+  if (c < 0x80) return Utf8Char{c, 1};
+  std::size_t len = 0;
+  char32_t cp = 0;
+  unsigned lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) {   // C0 and C1 could only start overlong forms
+    len = 2;
+    cp = c & 0x1Fu;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    len = 3;
+    cp = c & 0x0Fu;
+    if (c == 0xE0) lo = 0xA0;  // below: overlong
+    if (c == 0xED) hi = 0x9F;  // above: surrogates
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    len = 4;
+    cp = c & 0x07u;
+    if (c == 0xF0) lo = 0x90;  // below: overlong
+    if (c == 0xF4) hi = 0x8F;  // above: beyond U+10FFFF
+  } else {
+    return std::nullopt;  // a continuation byte, or F5..FF
+  }
+  if (pos + len > s.size()) return std::nullopt;
+  for (std::size_t k = 1; k < len; ++k) {
+    const unsigned b = byte(pos + k);
+    if (k == 1 ? (b < lo || b > hi) : (b < 0x80 || b > 0xBF)) return std::nullopt;
+    cp = (cp << 6) | (b & 0x3Fu);
+  }
+  return Utf8Char{cp, len};
+}
+
 std::string to_valid_utf8(std::string_view s) {
   static const char kReplacement[] = "\xEF\xBF\xBD";
   std::string out;
   out.reserve(s.size());
   std::size_t i = 0;
-  auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
   while (i < s.size()) {
-    const unsigned char c = byte(i);
-    std::size_t len = 0;
-    unsigned lo = 0x80, hi = 0xBF;  // allowed range of the second byte
-    if (c < 0x80) {
-      len = 1;
-    } else if (c >= 0xC2 && c <= 0xDF) {
-      len = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-      len = 3;
-      if (c == 0xE0) lo = 0xA0;  // no overlong forms
-      if (c == 0xED) hi = 0x9F;  // no surrogates
-    } else if (c >= 0xF0 && c <= 0xF4) {
-      len = 4;
-      if (c == 0xF0) lo = 0x90;
-      if (c == 0xF4) hi = 0x8F;  // <= U+10FFFF
-    }
-    bool ok = len > 0 && i + len <= s.size();
-    for (std::size_t k = 1; ok && k < len; ++k) {
-      const unsigned b = byte(i + k);
-      ok = k == 1 ? (b >= lo && b <= hi) : (b >= 0x80 && b <= 0xBF);
-    }
-    if (ok) {
-      out.append(s.substr(i, len));
-      i += len;
+    if (const std::optional<Utf8Char> c = decode_utf8(s, i)) {
+      out.append(s.substr(i, c->length));
+      i += c->length;
     } else {
       out += kReplacement;
       ++i;

@@ -4,6 +4,7 @@
 // ASCII only, so UTF-8 text passes through unchanged.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,8 +47,22 @@ std::optional<double> parse_number(std::string_view field);
 // human or a config file.
 std::string format_number(double v);
 
-// Valid UTF-8 copy of s: every byte that does not start a well-formed UTF-8 sequence (including
-// overlong forms and surrogates) becomes U+FFFD. Text headed for JSON goes through this so a
+// One character of UTF-8 text: its code point and how many bytes encode it (1 to 4).
+struct Utf8Char {
+  char32_t code_point = 0;
+  std::size_t length = 0;
+};
+
+// The character whose encoding starts at s[pos], decoded strictly (RFC 3629: the shortest form
+// only, no surrogates U+D800..U+DFFF, nothing above U+10FFFF); nullopt when the bytes there do not
+// start a well-formed character: a stray continuation byte, an overlong form, a surrogate, a
+// value beyond U+10FFFF, a sequence cut short by the end of s or by a byte that does not continue
+// it, or pos at or past the end. The one UTF-8 decoder of the engine: what it rejects, every
+// caller treats byte by byte.
+std::optional<Utf8Char> decode_utf8(std::string_view s, std::size_t pos);
+
+// Valid UTF-8 copy of s: every byte that does not start a well-formed UTF-8 sequence
+// (decode_utf8, so also overlong forms and surrogates) becomes U+FFFD. Text headed for JSON goes through this so a
 // Latin-1 file name can never make a writer throw.
 std::string to_valid_utf8(std::string_view s);
 

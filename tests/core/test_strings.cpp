@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -153,6 +154,67 @@ TEST(Strings, ToValidUtf8) {
   EXPECT_EQ(to_valid_utf8("a\xE2\x82"), "a" + r + r);                // cut short at the end
   EXPECT_EQ(to_valid_utf8("\x80"), r);                               // lone continuation byte
   EXPECT_EQ(to_valid_utf8(std::string("a\0b", 3)), std::string("a\0b", 3));
+}
+
+// Code points taken from the Unicode standard's examples (U+00E9, U+20AC, U+1F600) and the edges
+// of the ranges RFC 3629 allows.
+TEST(Strings, DecodeUtf8WellFormed) {
+  struct Case {
+    std::string bytes;
+    char32_t code_point;
+  };
+  const Case cases[] = {
+      {"A", 0x41},
+      {std::string("\0", 1), 0x0},
+      {"\x7F", 0x7F},
+      {"\xC2\x80", 0x80},
+      {"\xC3\xA9", 0xE9},
+      {"\xDF\xBF", 0x7FF},
+      {"\xE0\xA0\x80", 0x800},
+      {"\xE2\x82\xAC", 0x20AC},
+      {"\xED\x9F\xBF", 0xD7FF},
+      {"\xEE\x80\x80", 0xE000},
+      {"\xEF\xBF\xBF", 0xFFFF},
+      {"\xF0\x90\x80\x80", 0x10000},
+      {"\xF0\x9F\x98\x80", 0x1F600},
+      {"\xF4\x8F\xBF\xBF", 0x10FFFF},
+  };
+  for (const Case& c : cases) {
+    const auto got = decode_utf8(c.bytes, 0);
+    ASSERT_TRUE(got.has_value()) << std::hex << static_cast<std::uint32_t>(c.code_point);
+    EXPECT_EQ(got->code_point, c.code_point);
+    EXPECT_EQ(got->length, c.bytes.size());
+  }
+  // Decoding starts where it is told to.
+  const auto e = decode_utf8("caf\xC3\xA9", 3);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->code_point, 0xE9u);
+}
+
+TEST(Strings, DecodeUtf8RejectsOverlongSurrogatesAndTruncation) {
+  const char* const rejected[] = {
+      "\xC0\xAF",          // "/" in two bytes (overlong)
+      "\xC1\xBF",          // U+7F in two bytes
+      "\xE0\x80\xAF",      // "/" in three bytes
+      "\xE0\x9F\xBF",      // U+7FF in three bytes
+      "\xF0\x80\x80\xAF",  // "/" in four bytes
+      "\xF0\x8F\xBF\xBF",  // U+FFFF in four bytes
+      "\xED\xA0\x80",      // U+D800, a surrogate
+      "\xED\xBF\xBF",      // U+DFFF
+      "\xF4\x90\x80\x80",  // U+110000, beyond Unicode
+      "\xF5\x80\x80\x80",  // a lead byte no character has
+      "\xFF",
+      "\x80",  // a continuation byte alone
+      "\xBF",
+      "\xC3",  // cut short by the end
+      "\xE2\x82",
+      "\xF0\x9F\x98",
+      "\xC3(",  // cut short by a byte that does not continue it
+      "\xE2\x82(",
+  };
+  for (const char* bytes : rejected) EXPECT_FALSE(decode_utf8(bytes, 0).has_value()) << ::testing::PrintToString(bytes);
+  EXPECT_FALSE(decode_utf8("", 0).has_value());
+  EXPECT_FALSE(decode_utf8("ab", 2).has_value());  // at the end
 }
 
 }  // namespace

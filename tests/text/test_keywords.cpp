@@ -39,6 +39,32 @@ TEST(TextKeywords, NormalizeWord) {
   EXPECT_EQ(tx::normalize_word("A  Lot!"), "a lot");
 }
 
+// Bytes that are not well-formed UTF-8 are word characters taken one by one (engine/core/strings.h
+// decode_utf8): an overlong form is such bytes, even when it spells a character that would be
+// punctuation, a space or an apostrophe in its shortest form.
+TEST(TextKeywords, NormalizeWordTakesMalformedUtf8AsWordBytes) {
+  EXPECT_EQ(tx::normalize_word("a\xC2\xA0"
+                               "b"),
+            "a b");  // U+00A0, a no-break space: splits
+  EXPECT_EQ(tx::normalize_word("a\xE0\x82\xA0"
+                               "b"),
+            "a\xE0\x82\xA0"
+            "b");                                                                 // the same, overlong: kept
+  EXPECT_EQ(tx::normalize_word("don\xE2\x80\x99t"), "don't");                     // U+2019: an apostrophe
+  EXPECT_EQ(tx::normalize_word("don\xF0\x82\x80\x99t"), "don\xF0\x82\x80\x99t");  // overlong U+2019
+  EXPECT_EQ(tx::normalize_word("\xE2\x80\x9Cx"), "x");                            // U+201C, a quote: stripped
+  EXPECT_EQ(tx::normalize_word("\xF0\x82\x80\x9Cx"), "\xF0\x82\x80\x9Cx");        // overlong: kept
+  EXPECT_EQ(tx::normalize_word("x\xED\xA0\x80"), "x\xED\xA0\x80");                // a surrogate: bytes kept
+  EXPECT_EQ(tx::normalize_word("x\xE2\x80"), "x\xE2\x80");                        // cut short: bytes kept
+  EXPECT_EQ(tx::normalize_word("\xE9t\xE9!"), "\xE9t\xE9");                       // Latin-1 bytes are word characters
+  // A malformed byte between two words joins them as a word character would.
+  EXPECT_EQ(tx::normalize_tokens("a\xC0\xA0"
+                                 "b c"),
+            (std::vector<std::string>{"a\xC0\xA0"
+                                      "b",
+                                      "c"}));
+}
+
 TEST(TextKeywords, RunOfIdenticalKeywordsMarksFirst) {
   const auto lex = lexicon_of({"very", "big"});
   std::vector<tx::Word> words = {{1.0, 1.2, "very"}, {1.3, 1.5, "very"}, {1.6, 2.0, "big"}};
