@@ -5,14 +5,16 @@
 // |r - l| > l_pn unless exclude_near is off), where k = candidates_per_transition *
 // max_transitions; with max_transitions 0, K_l holds them all (the paper's candidates).
 //
-// Two searches find it:
-// - exact: every pair's distance is bounded from below by principal-axis projections of the
-//   positions and velocities (one matrix product per tile of pairs, each tile serving both
-//   directions since d(l, r) = d(r, l)); only pairs whose bound is within reach get d. Time
-//   grows as frames^2, memory linearly.
-// - approximate: a k-d tree over the same projections, searched best first with the same lower
-//   bound, refined by d. Run to the end (ann_checks 0) it is exact; with ann_checks it stops after
-//   that many distance evaluations per frame (time ~ frames * log(frames)).
+// Two searches find it, both in the pose space of graph/pose_space.h and gathering through
+// graph/candidate_gathering.h:
+// - exact (graph/exact_finder.cpp): every pair's distance is bounded from below by
+//   principal-axis projections of the positions and velocities (one matrix product per tile of
+//   pairs, each tile serving both directions since d(l, r) = d(r, l)); only pairs whose bound is
+//   within reach get d. Time grows as frames^2, memory linearly.
+// - approximate (graph/tree_finder.cpp): a k-d tree over the same projections, searched best
+//   first with the same lower bound, refined by d. Run to the end (ann_checks 0) it is exact; with
+//   ann_checks it stops after that many distance evaluations per frame (time ~ frames *
+//   log(frames)).
 // Distances are screened in single precision; any decision within float error of a threshold or
 // of the k-th distance is taken on d in double, so both searches give the same K_l exactly.
 #pragma once
