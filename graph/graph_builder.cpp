@@ -19,12 +19,6 @@ void GraphBuilder::add_edge(int from, int to, const EdgeInfo& info) {
   info_.push_back(info);
 }
 
-void GraphBuilder::reserve_edges(std::size_t edges) {
-  from_.reserve(edges);
-  to_.reserve(edges);
-  info_.reserve(edges);
-}
-
 GraphStorage GraphBuilder::finish() {
   const std::size_t n = nodes_.size(), e = from_.size();
   if (e >= std::numeric_limits<std::uint32_t>::max())

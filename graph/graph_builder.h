@@ -21,7 +21,6 @@ class GraphBuilder {
 
   // Throws gmg::Error when an end is outside [0, frames).
   void add_edge(int from, int to, const EdgeInfo& info);
-  void reserve_edges(std::size_t edges);
 
   // The storage (a stable counting sort by source); the builder is left empty.
   GraphStorage finish();

@@ -55,20 +55,6 @@ TranscriptFormat parse_transcript_format(const std::string& name) {
   throw Error("unknown transcript format " + quote_field(name) + " (expected one of: auto, tsv, textgrid, json)");
 }
 
-std::string transcript_format_name(TranscriptFormat format) {
-  switch (format) {
-    case TranscriptFormat::Auto:
-      return "auto";
-    case TranscriptFormat::Tsv:
-      return "tsv";
-    case TranscriptFormat::TextGrid:
-      return "textgrid";
-    case TranscriptFormat::Json:
-      return "json";
-  }
-  return "auto";
-}
-
 std::vector<Word> read_transcript(const std::string& path, TranscriptFormat format, const std::string& tier) {
   if (format == TranscriptFormat::Auto) {
     std::string ext = ascii_lower(std::filesystem::path(path).extension().string());

@@ -33,9 +33,6 @@ enum class TranscriptFormat { Auto, Tsv, TextGrid, Json };
 // otherwise.
 TranscriptFormat parse_transcript_format(const std::string& name);
 
-// The lower-case name of a format ("auto", "tsv", "textgrid", "json").
-std::string transcript_format_name(TranscriptFormat format);
-
 // Reads a transcript. Auto picks the reader by extension (ASCII case-insensitive):
 // .tsv/.txt -> TSV, .textgrid -> TextGrid, .json -> JSON (read_json_transcript: Whisper, WhisperX
 // or Google); any other extension is a gmg::Error that suggests --transcript-format. `tier` names

@@ -50,10 +50,4 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
   return out;
 }
 
-int timeline_transitions(const std::vector<SourceClock>& timeline) {
-  int n = 0;
-  for (std::size_t i = 1; i < timeline.size(); ++i) n += timeline[i].run != timeline[i - 1].run;
-  return n;
-}
-
 }  // namespace gmg

@@ -29,7 +29,4 @@ struct SourceClock {
 // One clock per output frame (the sum of the pieces' lengths).
 std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues);
 
-// Number of transitions in a timeline (run changes).
-int timeline_transitions(const std::vector<SourceClock>& timeline);
-
 }  // namespace gmg

@@ -23,8 +23,8 @@ struct Velocity {
   std::vector<glm::dvec3> lin;
 };
 
-// Reads the source at fractional times. capture_first[f] is the first frame of the continuous
-// capture run holding f, so a velocity never differences across a break.
+// Reads the source at fractional times. first_[f] is the first frame of the continuous capture
+// run holding f, so a velocity never differences across a break.
 class SourceReader {
  public:
   SourceReader(const Motion& m, const std::vector<char>& continues) : m_(m), continues_(continues) {

@@ -45,7 +45,6 @@ class Rng {
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   // Uniform integer in [0, n) (n > 0); the modulo bias is below 2^-50 for the small n used here.
   int below(int n) { return static_cast<int>(gen_() % static_cast<std::uint64_t>(n)); }
-  bool chance(double p) { return uniform() < p; }
   // Standard normal (Box-Muller; one value per call, the second one is discarded).
   double gaussian() {
     const double u1 = 1.0 - uniform();  // (0, 1]
