@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A one-node Slurm cluster on this machine, for trying scripts/slurm_batch.sh and for its test
-# (tests/app/slurm_batch_test.sh): installs Debian's slurm-wlm and munge when missing, writes
+# (tests/batch/slurm_batch_test.sh): installs Debian's slurm-wlm and munge when missing, writes
 # /etc/slurm/slurm.conf for this host (all its cores, one partition "local"), and starts munged,
 # slurmctld and slurmd unless they already run. Needs root (or sudo). Idempotent.
 #   scripts/setup_local_slurm.sh          set up and start

@@ -23,9 +23,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "engine/app/batch/batch.h"
-#include "engine/app/synth/synth.h"
+#include "engine/batch/batch.h"
 #include "engine/core/parallel.h"
+#include "engine/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "audio/wav.h"
-#include "engine/app/pipeline.h"
-#include "engine/app/synth/synth.h"
+#include "engine/pipeline/pipeline.h"
+#include "engine/synth/synth.h"
 #include "graph/build.h"
 #include "graph/stats.h"
 #include "tests/test_support.h"

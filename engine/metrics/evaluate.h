@@ -1,5 +1,5 @@
 // The objective evaluation of one generated motion (engine/metrics: metrics, naturalness, sync),
-// in memory, as one JSON object. `gmg evaluate` (engine/app/evaluate_files.h) reads the files.
+// in memory, as one JSON object. `gmg evaluate` (engine/evaluate/evaluate_files.h) reads the files.
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
-// libFuzzer harness: config files (engine/app/config.cpp): JSON parsing, every key's setter and
+// libFuzzer harness: config files (engine/config/config.cpp): JSON parsing, every key's setter and
 // the validation of the result.
-#include "engine/app/config.h"
+#include "engine/config/config.h"
 #include "tests/fuzz/fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "audio/wav.h"
-#include "engine/app/config.h"
-#include "engine/app/synth/synth.h"
+#include "engine/config/config.h"
 #include "engine/core/files.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/npz.h"
+#include "engine/synth/synth.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 #include "tests/fuzz/fuzz_common.h"

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/app/pipeline.h"
 #include "engine/core/error.h"
+#include "engine/pipeline/pipeline.h"
 #include "graph/build.h"
 #include "graph/continuity.h"
 #include "graph/stats.h"

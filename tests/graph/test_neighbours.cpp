@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/app/synth/synth.h"
 #include "engine/motion/bvh.h"
+#include "engine/synth/synth.h"
 #include "graph/continuity.h"
 #include "graph/neighbours.h"
 #include "graph/pruning.h"

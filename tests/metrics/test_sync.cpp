@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/metrics/sync.h"
 #include "engine/motion/bvh.h"
+#include "engine/synth/synth.h"
 #include "tests/test_support.h"
 
 namespace gmg {

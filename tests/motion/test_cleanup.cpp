@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/app/pipeline.h"
-#include "engine/app/synth/synth.h"
 #include "engine/core/error.h"
 #include "engine/motion/cleanup.h"
+#include "engine/pipeline/pipeline.h"
+#include "engine/synth/synth.h"
 #include "tests/core/helpers.h"
 #include "tests/test_support.h"
 

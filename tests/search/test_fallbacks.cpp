@@ -1,7 +1,7 @@
 // The three termination fallbacks and the failure count with fallbacks off.
 #include <gtest/gtest.h>
 
-#include "engine/app/pipeline.h"
+#include "engine/pipeline/pipeline.h"
 #include "search/fallbacks.h"
 #include "search/planner.h"
 #include "tests/search/fixtures.h"

@@ -1,4 +1,0 @@
-// gmg: the gesture motion graph command-line tool.
-#include "engine/app/cli.h"
-
-int main(int argc, char** argv) { return gmg::cli_main(argc, argv); }

@@ -1,0 +1,161 @@
+// The output folder of `gmg batch`: created, never an input folder, locked for one batch at a
+// time, cleared of the temporary files of a killed run, and its record of the run's settings.
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include "engine/batch/batch_internal.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/json.h"
+#include "engine/core/strings.h"
+
+namespace gmg::batch {
+namespace {
+
+void check_not_an_input_folder(const BatchOptions& options, const fs::path& out_dir) {
+  for (const std::vector<std::string>* dirs : {&options.pool_dirs, &options.test_dirs})
+    for (const std::string& d : *dirs)
+      for (const fs::path& p : {fs::path(d), fs::path(d) / "bvh", fs::path(d) / "wav"}) {
+        std::error_code ec;
+        if (fs::exists(p, ec) && fs::equivalent(p, out_dir, ec))
+          throw Error(options.output_dir + ": the output folder is an input folder; choose another");
+      }
+}
+
+// The process id of a temporary file "<name>.tmp<pid>_<n>" (write_file_atomically's names) of
+// a BVH, JSON or CSV output; 0 for any other file.
+long temporary_file_pid(const std::string& name) {
+  const std::size_t pos = name.rfind(".tmp");
+  if (pos == std::string::npos || pos == 0) return 0;
+  const std::string base = name.substr(0, pos);
+  auto named = [&](std::string_view ext) { return base.size() > ext.size() && ends_with_ci(base, ext); };
+  if (!named(".bvh") && !named(".json") && !named(".csv")) return 0;
+  const std::string tail = name.substr(pos + 4);
+  const std::size_t us = tail.find('_');
+  if (us == std::string::npos || us == 0 || us + 1 >= tail.size()) return 0;
+  if (!std::all_of(tail.begin(), tail.end(), [](char c) { return (c >= '0' && c <= '9') || c == '_'; })) return 0;
+  try {
+    return std::stol(tail.substr(0, us));
+  } catch (...) {
+    return 0;
+  }
+}
+
+// Removes the temporary files of processes that are gone (a live one may be another batch).
+void remove_stale_temporaries(const fs::path& dir, Progress& progress) {
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const long pid = temporary_file_pid(it->path().filename().string());
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM) continue;  // still running
+    std::error_code ec2;
+    if (fs::remove(it->path(), ec2)) ++removed;
+  }
+  if (removed) progress.line("batch: removed " + std::to_string(removed) + " temporary file(s) of an interrupted run");
+}
+
+// The same value as an unordered json, to compare with one read from a file.
+nlohmann::json plain(const nlohmann::ordered_json& j) { return parse_json_text(json_dump(j, -1), "batch record"); }
+
+// What differs between the folder's record and this run's, in words ("seed 1, not 2"); "" when
+// nothing does.
+std::string record_difference(const nlohmann::json& old, const nlohmann::ordered_json& now) {
+  if (!old.is_object()) return "an unreadable record";
+  for (const char* key : {"seed", "pairing"}) {
+    const nlohmann::json mine = plain(now[key]);
+    if (!old.contains(key) || old[key] != mine)
+      return std::string(key) + " " + (old.contains(key) ? json_dump(old[key], -1) : "none") + ", not " +
+             json_dump(now[key], -1);
+  }
+  const nlohmann::json pool = plain(now["pool"]);
+  if (!old.contains("pool") || old["pool"] != pool)
+    return "another pool (" + std::to_string(old.contains("pool") ? old["pool"].size() : 0) + " reference clips, not " +
+           std::to_string(pool.size()) + ")";
+  const nlohmann::json params = plain(now["parameters"]);
+  if (!old.contains("parameters") || !old["parameters"].is_object()) return "no parameters";
+  for (auto it = params.begin(); it != params.end(); ++it)
+    if (!old["parameters"].contains(it.key()) || old["parameters"][it.key()] != it.value())
+      return "parameter " + it.key() + " = " +
+             (old["parameters"].contains(it.key()) ? json_dump(old["parameters"][it.key()], -1) : "none") + ", not " +
+             json_dump(it.value(), -1);
+  return "";
+}
+
+}  // namespace
+
+FolderLock::FolderLock(const fs::path& dir, const std::string& name) {
+  const std::string path = (dir / ".gmg-batch.lock").string();
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error(name + ": cannot create the lock file " + path + " (" + std::strerror(errno) + ")");
+  // The file stays empty: the lock is the state, and a refused batch changes nothing.
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw Error(name +
+                ": another gmg batch is writing into this output folder; wait for it to finish or choose "
+                "another folder");
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+OutputFolder prepare_output_folder(const BatchOptions& options, Progress& progress) {
+  OutputFolder out;
+  out.dir = fs::path(options.output_dir);
+  std::error_code ec;
+  fs::create_directories(out.dir, ec);
+  if (!fs::is_directory(out.dir, ec)) throw Error(options.output_dir + ": cannot create the output folder");
+  check_not_an_input_folder(options, out.dir);
+  out.lock = std::make_unique<FolderLock>(out.dir, options.output_dir);
+  remove_stale_temporaries(out.dir, progress);
+  return out;
+}
+
+nlohmann::ordered_json run_record(std::uint64_t seed, BatchPairing pairing, const std::vector<std::string>& pool_stems,
+                                  const Config& config) {
+  nlohmann::ordered_json record;
+  record["tool"] = "gmg batch";
+  record["seed"] = seed;
+  record["pairing"] = enum_name(kBatchPairingNames, pairing);
+  record["pool"] = pool_stems;
+  nlohmann::ordered_json parameters = parse_ordered_json_text(config_to_json(config), "the config");
+  parameters.erase("seed");
+  record["parameters"] = parameters;
+  return record;
+}
+
+void check_and_write_run_record(const fs::path& out_dir, const std::string& name, const nlohmann::ordered_json& record,
+                                const ClipMap& tests, bool force) {
+  const fs::path path = out_dir / "batch.json";
+  std::error_code ec;
+  if (!force && fs::exists(path, ec)) {
+    const bool has_outputs = std::any_of(tests.begin(), tests.end(), [&](const auto& t) {
+      std::error_code ec2;
+      return fs::exists(out_dir / (t.first + ".bvh"), ec2);
+    });
+    nlohmann::json old;
+    try {
+      old = read_json_file(path.string());
+    } catch (const Error&) {
+      old = nullptr;
+    }
+    const std::string difference = has_outputs ? record_difference(old, record) : "";
+    if (!difference.empty())
+      throw Error(name + ": holds outputs of a run with " + difference + " (" + path.string() +
+                  "); they would mix with this run's. Use another folder, the same settings, or --force to redo "
+                  "every clip");
+  }
+  const std::string text = json_dump(record, 2) + "\n";
+  write_file_atomically(path.string(), [&](std::ostream& os) { os << text; });
+}
+
+}  // namespace gmg::batch

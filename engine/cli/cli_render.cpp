@@ -1,0 +1,68 @@
+// `gmg render`: a video of a motion with its speech, captions and markers.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/cli/cli_common.h"
+#include "engine/core/error.h"
+#include "engine/render/render.h"
+
+namespace gmg {
+namespace {
+
+struct RenderArgs {
+  render::RenderInputs inputs;
+  render::RenderOptions options;
+  std::string view = "front", size = "640x480", format = "auto";
+};
+
+void parse_size(const std::string& text, render::RenderOptions& o) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 640x480)");
+  o.width = w;
+  o.height = h;
+}
+
+void run_render(RenderArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  a.options.view = render::parse_view(a.view);
+  parse_size(a.size, a.options);
+  a.inputs.transcript_format = text::parse_transcript_format(a.format);
+  const render::RenderSummary r = render::render_video(a.inputs, a.options);
+  for (const std::string& n : r.notes) std::cerr << "gmg: warning: " << n << "\n";
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "wrote " << a.inputs.output << ": " << r.frames << " frames at " << r.fps << " fps, " << r.width << "x"
+            << r.height;
+  if (r.audio_s >= 0) std::cout << ", audio " << r.audio_s << " s";
+  std::cout << " (" << static_cast<int>(took * 10) / 10.0 << " s)\n";
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("render", "draw a motion as a video with its speech (needs the ffmpeg tool)");
+  auto a = std::make_shared<RenderArgs>();
+  render::RenderInputs& in = a->inputs;
+  cmd->add_option("motion", in.motion, "the motion to draw: BVH, or SMPL-X .npz with --skeleton")->required();
+  cmd->add_option("--skeleton", in.skeleton, "BVH whose hierarchy gives .npz motions their skeleton");
+  cmd->add_option("--audio", in.audio, "the speech (WAV, FLAC, MP3, ...), muxed into the video");
+  cmd->add_option("--transcript", in.transcript, "its transcript (.tsv, .TextGrid, .json): captions");
+  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
+  cmd->add_option("--tier", in.tier, "TextGrid tier of the captions (default: 'words', else the only interval tier)");
+  cmd->add_option("--report", in.report, "the reenactment report: mark path junctions (and onsets, with --audio)");
+  cmd->add_option("--compare", in.compare, "a second motion drawn beside the first, same camera (e.g. the truth)");
+  cmd->add_option("--view", a->view, "camera: front, side or top")
+      ->check(CLI::IsMember({"front", "side", "top"}))
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "pixels per figure, WIDTHxHEIGHT (even)")->capture_default_str();
+  cmd->add_option("--ffmpeg", a->options.ffmpeg, "the ffmpeg tool")->capture_default_str();
+  cmd->add_option("-o,--output", in.output, "the video to write (.mp4, .mkv or .mov)")->required();
+  cmd->callback([a] { run_render(*a); });
+}
+
+}  // namespace gmg

@@ -1,0 +1,96 @@
+#include "engine/evaluate/evaluate_files.h"
+
+#include "audio/audio_file.h"
+#include "engine/core/error.h"
+#include "engine/core/strings.h"
+#include "engine/evaluate/plot.h"
+#include "engine/metrics/naturalness.h"
+#include "engine/metrics/sync.h"
+#include "engine/motion/motion_file.h"
+#include "engine/pipeline/report_facts.h"
+#include "graph/graph_io.h"
+
+namespace gmg {
+namespace {
+
+std::vector<Motion> read_reference(const std::string& path, const std::string& skeleton) {
+  std::vector<Motion> clips;
+  if (ends_with_ci(path, ".gmg")) {
+    const MotionGraph g = graph_load(path);
+    for (const ClipInfo& c : g.clips)
+      clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
+  } else {
+    clips.push_back(motion_read(path, skeleton));
+  }
+  return clips;
+}
+
+}  // namespace
+
+EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
+  EvaluateResult result;
+  Motion generated = motion_read(in.generated, in.skeleton);
+  Motion truth;
+  if (!in.truth.empty()) {
+    truth = motion_read(in.truth, in.skeleton);
+    if (in.trim && truth.frame_count != generated.frame_count) {
+      Motion& longer = truth.frame_count > generated.frame_count ? truth : generated;
+      const int keep = std::min(truth.frame_count, generated.frame_count);
+      result.warnings.push_back("--trim: cut " + std::to_string(longer.frame_count - keep) +
+                                " frame(s) off the end of " + (&longer == &truth ? in.truth : in.generated) + " (" +
+                                std::to_string(longer.frame_count) + " -> " + std::to_string(keep) + ")");
+      longer = motion_slice(longer, 0, keep);
+    }
+  }
+  audio::Audio sound;
+  if (!in.audio.empty()) sound = audio::read_audio(in.audio);
+  const std::vector<Motion> reference =
+      in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference, in.skeleton);
+  ReportFacts facts;
+  if (!in.report.empty()) facts = read_report_facts(in.report, generated.fps);
+
+  EvaluateData data;
+  data.generated = &generated;
+  data.generated_name = in.generated;
+  if (!in.truth.empty()) {
+    data.truth = &truth;
+    data.truth_name = in.truth;
+  }
+  for (const Motion& m : reference) data.reference.push_back(&m);
+  data.reference_name = in.reference;
+  if (!in.audio.empty()) data.audio = &sound;
+  if (!in.report.empty()) data.source_frames = &facts.source_frames;
+  const nlohmann::ordered_json metrics = evaluate_motions(data, options);
+
+  nlohmann::ordered_json inputs = {{"generated", in.generated}};
+  if (!in.truth.empty()) inputs["truth"] = in.truth;
+  if (!in.audio.empty()) inputs["audio"] = in.audio;
+  if (!in.reference.empty()) inputs["reference"] = in.reference;
+  if (!in.report.empty()) inputs["report"] = in.report;
+  result.json["inputs"] = inputs;
+  for (auto it = metrics.begin(); it != metrics.end(); ++it) result.json[it.key()] = it.value();
+  if (!in.report.empty()) {
+    result.json["failures"] = facts.totals["failures"];
+    if (facts.totals.contains("fallbacks")) result.json["fallbacks"] = facts.totals["fallbacks"];
+  }
+  for (const std::string& w : result.warnings) result.json["notes"].push_back(w);
+
+  if (!in.plot.empty()) {
+    EvaluationPlot p;
+    p.fps = generated.fps;
+    p.title = in.generated;
+    const double scale = length_unit_to_cm(generated.skeleton);
+    p.generated_speed = mean_joint_speed(motion_forward_kinematics(generated) * scale, generated.fps);
+    if (!in.truth.empty()) p.truth_speed = mean_joint_speed(motion_forward_kinematics(truth) * scale, truth.fps);
+    if (!in.audio.empty()) {
+      const SpeechTrack track = speech_track(sound);
+      p.envelope = track.envelope;
+      p.onsets_s = track.onset_times_s;
+    }
+    p.junctions_s = facts.junctions_s;
+    plot_write(in.plot, p);
+  }
+  return result;
+}
+
+}  // namespace gmg

@@ -1,0 +1,109 @@
+// The engine's jobs: analyse speech into timed events, build a graph from reference files,
+// reenact new speech from a graph. The command-line tool and batch runs call these.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "audio/onset.h"
+#include "audio/wav.h"
+#include "engine/config/config.h"
+#include "engine/motion/motion.h"
+#include "graph/build.h"
+#include "search/planner.h"
+#include "text/keywords.h"
+#include "text/transcript.h"
+
+namespace gmg {
+
+// One speech: an audio file and, optionally, a word-timed transcript.
+struct SpeechFiles {
+  std::string audio;       // audio path (required): WAV, or any format audio/audio_file.h reads
+  std::string transcript;  // "" = none
+  text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
+  std::string tier{};  // the TextGrid tier to read; "" = the default (text/transcript.h read_textgrid)
+};
+
+// Speech as frames on a motion grid.
+struct SpeechEvents {
+  double duration_s = 0.0;        // audio duration
+  int total_frames = 0;           // round(duration_s * fps) for test speech; the motion length for a reference
+  std::vector<int> onset_frames;  // ascending, unique, in [0, total_frames)
+  std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
+  int words = 0;                                            // transcript words read
+};
+
+// Detects onsets (SPEC "Onset nodes") and keywords in a speech. frame_count < 0 means a test
+// speech (T = round(duration * fps)); otherwise events at or after frame_count are dropped (a
+// reference whose audio outlasts its motion). A transcript that runs past the audio's end is an
+// error naming the transcript.
+SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
+                            const text::Lexicon& lexicon);
+
+// Speech analysed in seconds, before it is put on a motion's frame grid. A reference's audio is
+// analysed (and released) before its motion is read, so the two are never in memory together.
+struct SpeechTimes {
+  double duration_s = 0.0;
+  audio::OnsetAnalysis onsets;
+  std::vector<text::Word> words;
+  bool has_words = false;
+  std::string name;  // labels errors: the transcript's file name, else the audio's
+};
+
+// Reads and analyses a speech (the transcript past the audio's end is an error here already).
+SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params);
+
+// The events of analysed speech on a grid of `fps` (frame_count as for speech_analyse).
+SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int frame_count, const text::Lexicon& lexicon);
+
+// Same as speech_analyse, from audio and words already in memory (words may be null: no
+// transcript). `name` labels errors (the transcript's file name).
+SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon);
+
+// The lexicon named by params.keywords, or assets/keywords.txt.
+text::Lexicon lexicon_for(const GraphParams& params);
+
+struct ReferenceFiles {
+  std::string motion;  // BVH or SMPL-X .npz path
+  SpeechFiles speech;
+  std::string skeleton{};  // BVH skeleton template of an .npz motion (engine/motion/npz.h); "" = none
+};
+
+// Reads, analyses and joins the clips into one graph, in the order given. Clips are read by up
+// to `jobs` threads (0: every core); a problem names the first clip (in order) that has one.
+MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
+                                   const BuildProgress& progress = {}, int jobs = 1);
+
+struct Reenactment {
+  Motion motion;  // exactly events.total_frames frames, in the graph's skeleton
+  Plan plan;
+  nlohmann::ordered_json report;
+};
+
+// Throws gmg::Error naming `name` (the speech) when a motion of `frames` frames in `skeleton`
+// would exceed what gmg writes (engine/core/limits.h: kMaxOutputFrames frames, kMaxOutputBytes
+// of BVH text). reenact checks it before any search.
+void check_output_size(int frames, const Skeleton& skeleton, const std::string& name);
+
+// Reenacts the speech: segmentation, planning, resampling, blending. Deterministic for a given
+// graph, speech, config (including config.seed). `graph_name` only labels the report.
+Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
+                    const std::string& graph_name);
+
+// Same, from events already analysed.
+Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);
+
+// The assembly parameters a configuration implies: config.blend, except that the paper's planner
+// joins pieces with the paper's cross-fade and a free root.
+BlendParams assembly_params(const Config& config);
+
+// Paths of a plan joined into one motion: by source time with inertialized transitions
+// (BlendMode::Inertialize), or resampled to their target lengths and blended (Offset, Crossfade).
+Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params);
+
+}  // namespace gmg

@@ -1,0 +1,205 @@
+#include "engine/render/encoder.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/strings.h"
+
+extern char** environ;
+
+namespace gmg::render {
+namespace {
+
+bool is_executable_file(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
+}
+
+const char* native_pixel_format() {
+  // Cairo keeps a pixel as one native 32-bit word 0xXXRRGGBB.
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  return "0rgb";
+#else
+  return "bgr0";
+#endif
+}
+
+std::vector<std::string> ffmpeg_arguments(const EncoderSettings& s) {
+  const Rational rate = fps_rational(s.fps);
+  std::vector<std::string> a = {s.ffmpeg,      "-hide_banner",
+                                "-nostdin",    "-loglevel",
+                                "error",       "-y",
+                                "-f",          "rawvideo",
+                                "-pix_fmt",    native_pixel_format(),
+                                "-video_size", std::to_string(s.width) + "x" + std::to_string(s.height),
+                                "-framerate",  std::to_string(rate.num) + "/" + std::to_string(rate.den),
+                                "-i",          "pipe:0"};
+  if (!s.audio.empty()) a.insert(a.end(), {"-i", s.audio});
+  a.insert(a.end(), {"-map", "0:v:0"});
+  if (!s.audio.empty()) a.insert(a.end(), {"-map", "1:a:0"});
+  // passthrough: one output frame per input frame, whatever the muxer's defaults; no -shortest,
+  // so neither stream is cut to the other's length.
+  a.insert(a.end(), {"-c:v", "libx264", "-preset", s.preset, "-crf", std::to_string(s.crf), "-pix_fmt", "yuv420p",
+                     "-fps_mode", "passthrough"});
+  // 48 kHz: an AAC frame (1024 samples) is then shorter than a video frame, so the audio's padded
+  // end stays within a frame of the WAV's length.
+  if (!s.audio.empty()) a.insert(a.end(), {"-c:a", "aac", "-b:a", "160k", "-ar", "48000"});
+  if (ends_with_ci(s.output, ".mp4") || ends_with_ci(s.output, ".mov")) a.insert(a.end(), {"-movflags", "+faststart"});
+  a.push_back(s.output);
+  return a;
+}
+
+bool write_all(int fd, const unsigned char* p, std::size_t n) {
+  std::size_t done = 0;
+  while (done < n) {
+    const ssize_t k = ::write(fd, p + done, n - done);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return false;
+    done += static_cast<std::size_t>(k);
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string find_executable(const std::string& name) {
+  if (name.empty()) return "";
+  if (name.find('/') != std::string::npos) return is_executable_file(name) ? name : "";
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  for (const std::string& dir : split_trimmed(path, ':')) {
+    std::string candidate = dir;
+    candidate += '/';
+    candidate += name;
+    if (is_executable_file(candidate)) return candidate;
+  }
+  return "";
+}
+
+Rational fps_rational(double fps) {
+  if (std::abs(fps - std::round(fps)) < 1e-4 * fps) return {std::lround(fps), 1};
+  const double ntsc = fps * 1001.0 / 1000.0;
+  if (std::abs(ntsc - std::round(ntsc)) < 1e-4 * fps) return {std::lround(ntsc) * 1000, 1001};
+  return {std::lround(fps * 1000.0), 1000};
+}
+
+VideoEncoder::VideoEncoder(const EncoderSettings& settings) : settings_(settings) {
+  std::string log_template = (std::filesystem::temp_directory_path() / "gmg_ffmpeg_XXXXXX").string();
+  const int log_fd = ::mkstemp(log_template.data());
+  if (log_fd < 0) throw Error(settings_.name + ": cannot create a temporary file for ffmpeg's messages");
+  log_path_ = log_template;
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    ::close(log_fd);
+    throw Error(settings_.name + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, 2);
+  const std::vector<std::string> args = ffmpeg_arguments(settings_);
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const int rc = posix_spawn(&pid_, settings_.ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[0]);
+  ::close(log_fd);
+  pipe_fd_ = fds[1];
+  if (rc != 0) {
+    pid_ = -1;
+    stop();
+    throw Error(settings_.ffmpeg + ": cannot run (" + std::strerror(rc) + ")");
+  }
+}
+
+VideoEncoder::~VideoEncoder() { stop(); }
+
+void VideoEncoder::stop() {
+  if (pipe_fd_ >= 0) ::close(pipe_fd_);
+  pipe_fd_ = -1;
+  if (pid_ > 0) {
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+    std::error_code ec;
+    std::filesystem::remove(settings_.output, ec);
+  }
+  if (!log_path_.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(log_path_, ec);
+    log_path_.clear();
+  }
+}
+
+std::string VideoEncoder::log_tail() const {
+  std::string log;
+  try {
+    log = read_file_bytes(log_path_);
+  } catch (const Error&) {
+  }
+  std::vector<std::string> lines = split_lines(log);
+  std::string out;
+  const std::size_t from = lines.size() > 4 ? lines.size() - 4 : 0;
+  for (std::size_t i = from; i < lines.size(); ++i)
+    if (!trim(lines[i]).empty()) out += (out.empty() ? "" : "; ") + std::string(trim(lines[i]));
+  return out.empty() ? "no message" : out;
+}
+
+void VideoEncoder::fail(const std::string& what) {
+  const std::string message = settings_.name + ": " + what + " (ffmpeg: " + log_tail() + ")";
+  stop();
+  throw Error(message);
+}
+
+void VideoEncoder::write_frame(const unsigned char* pixels, int stride) {
+  const std::size_t row = static_cast<std::size_t>(settings_.width) * 4;
+  // A dead ffmpeg must show up as EPIPE here, not kill gmg with SIGPIPE.
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &previous);
+  bool ok = true;
+  if (static_cast<std::size_t>(stride) == row) {
+    ok = write_all(pipe_fd_, pixels, row * static_cast<std::size_t>(settings_.height));
+  } else {
+    for (int y = 0; y < settings_.height && ok; ++y)
+      ok = write_all(pipe_fd_, pixels + static_cast<std::size_t>(y) * static_cast<std::size_t>(stride), row);
+  }
+  ::sigaction(SIGPIPE, &previous, nullptr);
+  if (!ok) fail("ffmpeg stopped while encoding");
+}
+
+void VideoEncoder::finish() {
+  ::close(pipe_fd_);
+  pipe_fd_ = -1;
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::error_code ec;
+    std::filesystem::remove(settings_.output, ec);
+    fail("ffmpeg could not encode the video");
+  }
+  stop();
+}
+
+}  // namespace gmg::render

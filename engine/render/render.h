@@ -1,0 +1,30 @@
+// `gmg render`: a video of a motion with its speech, for looking at a result (GENEA-style
+// evaluations are done on such videos). The figure is drawn by scene.h, the frames are encoded
+// by the ffmpeg tool (encoder.h).
+//
+// Contract: the video has exactly the BVH's frame count at its frame rate; the audio stream,
+// when given, keeps the WAV's duration (neither is cut to the other). The file appears complete
+// or not at all: ffmpeg writes a temporary file beside it, renamed at the end, and any failure
+// (an unreadable input, no ffmpeg, ffmpeg failing) removes it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/render/scene.h"
+
+namespace gmg::render {
+
+struct RenderSummary {
+  int frames = 0;
+  double fps = 30;
+  int width = 0, height = 0;
+  double audio_s = -1;  // -1: no audio stream
+  std::vector<std::string> notes;
+};
+
+// gmg::Error "path: what" for a missing or invalid input, an output that is not .mp4, .mkv or
+// .mov or whose folder does not exist, no ffmpeg (options.ffmpeg not found), or ffmpeg failing.
+RenderSummary render_video(const RenderInputs& in, const RenderOptions& options);
+
+}  // namespace gmg::render
