@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# `cmake --install` gives a self-contained gmg: a copy of the install folder alone builds a graph
-# and reenacts (the default lexicon and config are compiled in), and the binary holds no path
-# into the source tree. Usage: install_test.sh BUILD_DIR SOURCE_DIR
+# `cmake --install` gives a gmg that needs no source tree: a copy of the install folder, moved
+# away from the build, builds a graph and reenacts (the default lexicon and config are compiled
+# in), and the binary holds no path into the source tree. It still links the system's shared
+# libraries (the Debian packages of scripts/setup.sh); this test runs where they are installed.
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1
 source=$(cd "$2" && pwd)
