@@ -15,8 +15,8 @@ namespace gmg {
 namespace {
 
 std::vector<unsigned char> bytes_0_to(int n) {
-  std::vector<unsigned char> b;
-  for (int i = 0; i < n; ++i) b.push_back(static_cast<unsigned char>(i));
+  std::vector<unsigned char> b(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) b[static_cast<std::size_t>(i)] = static_cast<unsigned char>(i);
   return b;
 }
 
