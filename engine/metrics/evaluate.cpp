@@ -20,16 +20,6 @@ double length_unit_to_cm(const Skeleton& skeleton) {
   return hi - lo < 5.0 ? 100.0 : 1.0;
 }
 
-std::vector<int> wrist_joints(const Skeleton& skeleton) {
-  std::vector<int> out;
-  for (int j = 0; j < skeleton.joint_count(); ++j)
-    if (ascii_lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
-  if (out.empty())
-    for (int j = 0; j < skeleton.joint_count(); ++j)
-      if (ends_with_ci(skeleton.joints[j].name, "hand")) out.push_back(j);
-  return out;
-}
-
 namespace {
 
 nlohmann::ordered_json controlled_json(const ControlledScore& s, const std::vector<double>& shifts) {

@@ -9,6 +9,7 @@
 
 #include "audio/wav.h"
 #include "engine/metrics/metrics.h"
+#include "engine/motion/body_parts.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
@@ -16,9 +17,6 @@ namespace gmg {
 // Positions are compared in centimetres: a skeleton whose rest pose is under 5 units tall is
 // taken to be in metres (BEAT2) and scaled by 100, others are taken as centimetres (GENEA, ZEGGS).
 double length_unit_to_cm(const Skeleton& skeleton);
-
-// Joint indices of the wrists: names containing "wrist", else names ending in "hand".
-std::vector<int> wrist_joints(const Skeleton& skeleton);
 
 struct EvaluateData {
   const Motion* generated = nullptr;  // required
