@@ -33,6 +33,12 @@ int check_clips(const std::vector<ClipEvents>& clips) {
       throw Error(c.name + ": " + std::to_string(c.motion.fps) + " fps differs from " + first.name + "'s " +
                   std::to_string(first.motion.fps) + " fps");
     if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
+    if (c.speech_dims != first.speech_dims)
+      throw Error(c.name + ": has " + std::to_string(c.speech_dims) + " speech features per frame, " + first.name +
+                  " has " + std::to_string(first.speech_dims));
+    if (c.speech_dims < 0 || c.speech.size() != static_cast<std::size_t>(c.motion.frame_count) *
+                                                    static_cast<std::size_t>(std::max(0, c.speech_dims)))
+      throw Error(c.name + ": its speech features do not cover its frames");
     total += c.motion.frame_count;
   }
   return total;
@@ -68,6 +74,8 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.params = params;
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
+  g.speech_dims = clips.front().speech_dims;
+  g.speech.reserve(static_cast<std::size_t>(total) * static_cast<std::size_t>(g.speech_dims));
   const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
   if (clips.size() > 1) {
     g.motion.rotations.reserve(samples);
@@ -83,6 +91,7 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (ClipEvents& c : clips) {
     const Motion& m = c.motion;
     g.clips.push_back({c.name, offset, m.frame_count});
+    g.speech.insert(g.speech.end(), c.speech.begin(), c.speech.end());
     clip_features(m, offset, features);
     mark_key_nodes(builder.nodes(), offset, c,
                    capture_jump_frames(features.positions.middleCols(offset, m.frame_count), params));

@@ -66,6 +66,17 @@ struct SearchParams {
   // Seeded variety: among accepted candidates whose cost is within `variety` of the best, one is
   // drawn at random, so different seeds give different plausible motions.
   double variety = 0.1;
+
+  // ---- speech-driven (natural planner; search/speech_match.h, search/reuse.h) ----
+  // The knob that trades sync for smoothness: the weight of the speech distance (mean squared
+  // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
+  // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
+  // without speech.
+  double speech_weight = 1.0;
+  // Weight of the reuse cost (a stretch just played costs 1 per play), and the half-life of a play
+  // in output seconds.
+  double reuse_weight = 1.0;
+  double reuse_halflife_s = 20.0;
 };
 
 // Throws gmg::Error naming the first key out of range.
