@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include <algorithm>
+
 #include "engine/core/error.h"
+#include "engine/motion/body_parts.h"
 #include "graph/breaks.h"
 #include "graph/continuity.h"
 #include "graph/features.h"
@@ -64,6 +67,24 @@ void clip_features(const Motion& m, int offset, PoseFeatures& out) {
   }
 }
 
+// Per frame: the mean speed of `joints` (root-relative: the features' positions are, and their
+// velocities are frame steps) over the median of it.
+std::vector<float> upper_body_activity(const PoseFeatures& f, const std::vector<int>& joints) {
+  const Eigen::Index n = f.velocities.cols();
+  std::vector<float> out(static_cast<std::size_t>(n), 0.0f);
+  if (joints.empty() || n == 0) return out;
+  for (Eigen::Index t = 0; t < n; ++t) {
+    double sum = 0.0;
+    for (int j : joints) sum += f.velocities.block<3, 1>(3 * j, t).norm();
+    out[static_cast<std::size_t>(t)] = static_cast<float>(sum / static_cast<double>(joints.size()));
+  }
+  std::vector<float> sorted = out;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const float median = sorted[sorted.size() / 2];
+  for (float& a : out) a = median > 0.0f ? a / median : 0.0f;
+  return out;
+}
+
 }  // namespace
 
 MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
@@ -115,6 +136,8 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   }
   for (int f = 0; f + 1 < total; ++f)
     if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
+
+  if (g.has_speech()) g.activity = upper_body_activity(features, upper_body_joints(g.motion.skeleton));
 
   ContinuityProgress analysed;
   if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };

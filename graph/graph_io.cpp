@@ -4,7 +4,7 @@
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges, speech features (see write_payload)
+//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload)
 //   u64      checksum of the payload (Checksum below)
 // The large parts are flat arrays in the layout they have in memory (motion samples; the edges
 // in compressed sparse row order: row starts, targets, weights, natural flags), so a load is
@@ -315,6 +315,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.vec_of<std::uint8_t>(e, [&](std::size_t i) { return std::uint8_t{csr.m_edge_properties[i].natural}; });
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
   w.vec(g.speech);
+  w.vec(g.activity);
 }
 
 // The speech features: none, or frames x dims finite values.
@@ -327,6 +328,11 @@ void read_speech(Reader& r, MotionGraph& g) {
     r.fail("speech features disagree with frames x features");
   for (float v : g.speech)
     if (!std::isfinite(v)) r.fail("a speech feature is not finite");
+  g.activity = r.vec<float>();
+  if (!g.activity.empty() && g.activity.size() != static_cast<std::size_t>(g.motion.frame_count))
+    r.fail("motion activity disagrees with the frame count");
+  for (float v : g.activity)
+    if (!std::isfinite(v) || v < 0.0f) r.fail("a motion activity is negative or not finite");
 }
 
 std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {

@@ -64,6 +64,10 @@ struct MotionGraph {
   // file of format 2), which the planner then matches without speech.
   std::vector<float> speech;
   int speech_dims = 0;
+  // How much the upper body moves at every frame: its mean root-relative joint speed over the
+  // graph's median of it (1 = the speaker's typical motion, near 0 = at rest); empty for a graph
+  // without speech features. The speech-driven planner prefers rest where the new speech pauses.
+  std::vector<float> activity;
 
   int frame_count() const { return motion.frame_count; }
   bool has_speech() const { return speech_dims > 0; }

@@ -114,8 +114,10 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         x.weight_sum = e.weight_sum + request.weight_scale * g.graph[*out].weight;
         x.start_cost = e.start_cost;
         x.extra_sum = e.extra_sum + extra_cost(request, e.length, child);
-        x.cost = x.start_cost + x.extra_sum / x.length + path_cost(x.weight_sum, x.length, target, params);
         x.terminated = is_stop_node(g, child, request);
+        if (x.terminated && request.speech && request.end_weight > 0.0)
+          x.start_cost += request.end_weight * request.speech->end_cost(child);
+        x.cost = x.start_cost + x.extra_sum / x.length + path_cost(x.weight_sum, x.length, target, params);
         next.push_back(x);
       }
     }

@@ -30,6 +30,7 @@ struct BeamRequest {
   // none.
   const SpeechMatch* speech = nullptr;
   double speech_weight = 0.0;
+  double end_weight = 0.0;  // a terminated path also pays end_weight x speech->end_cost(its last frame)
   int test_start = 0;
   const ReuseTracker* reuse = nullptr;
   double reuse_weight = 0.0;

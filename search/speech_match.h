@@ -6,7 +6,11 @@
 //
 // The cost of a pair (test frame t, graph frame f) is the weighted squared distance of their
 // speech features (audio/speech_features.h): loudness counts fully, onset activity half (it is
-// noisier: a syllable more or less changes it). A path's cost is the mean over the test frames
+// noisier: a syllable more or less changes it). Where the test speech pauses (loudness 20 dB or
+// more below its speaking level, fully from 35 dB), a frame also pays rest_weight times how much
+// the reference moves there (MotionGraph::activity): a speaker rests when silent, and stretches
+// of the reference that look like pauses by their sound need not be still (BEAT2's speaker moves
+// most between phrases). A path's cost is the mean over the test frames
 // it fills, each reading the path frame its time warp puts there.
 #pragma once
 
@@ -20,7 +24,7 @@ class SpeechMatch {
  public:
   // `test` holds test_frames x g.speech_dims features; empty (or a graph without speech features)
   // makes every cost 0. Throws gmg::Error when the sizes disagree.
-  SpeechMatch(const MotionGraph& g, const std::vector<float>& test, int test_frames);
+  SpeechMatch(const MotionGraph& g, const std::vector<float>& test, int test_frames, double rest_weight = 0.0);
 
   bool active() const { return active_; }
 
@@ -31,17 +35,29 @@ class SpeechMatch {
   // path[round(i * (n - 1) / (length - 1))] (as engine/assemble/timeline.h plays it).
   double path_cost(const std::vector<int>& path, int start, int length) const;
 
+  // What ending a path at graph frame f costs the rhythm: 1 - exp(-d^2 / (2 * 0.1 s^2)), d the time
+  // from f to the nearest kinematic beat of the reference in its capture run (a local minimum of
+  // its upper-body activity over +-4 frames, above 0.3 of its typical activity: the end of a
+  // stroke). The stop node lands on the test's onset, so a path that ends on a beat puts the
+  // motion's beat on the speech's (EMAGE-style beat consistency); 0 without activity.
+  double end_cost(int f) const;
+
   // For every graph frame s of `frames`: the mean cost of test frames [start, start + window)
   // against s, s + 1, ... played on naturally (holding a run's last frame). How well the speech
   // after a start node fits, before any path from it is known.
   void window_costs(int start, int window, const std::vector<int>& frames, std::vector<double>& out) const;
 
  private:
+  void beat_costs();
+
   const MotionGraph& g_;
   std::vector<float> test_;
   int test_frames_ = 0;
   bool active_ = false;
-  std::vector<int> run_last_;  // per graph frame: the last frame of its capture run
+  double rest_weight_ = 0.0;
+  std::vector<float> pause_;     // per test frame: how much it is a pause, 0..1
+  std::vector<int> run_last_;    // per graph frame: the last frame of its capture run
+  std::vector<float> end_cost_;  // per graph frame (end_cost)
 };
 
 }  // namespace gmg
