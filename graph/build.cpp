@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include <algorithm>
+
 #include "engine/core/error.h"
+#include "engine/motion/body_parts.h"
 #include "graph/breaks.h"
 #include "graph/continuity.h"
 #include "graph/features.h"
@@ -33,6 +36,12 @@ int check_clips(const std::vector<ClipEvents>& clips) {
       throw Error(c.name + ": " + std::to_string(c.motion.fps) + " fps differs from " + first.name + "'s " +
                   std::to_string(first.motion.fps) + " fps");
     if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
+    if (c.speech_dims != first.speech_dims)
+      throw Error(c.name + ": has " + std::to_string(c.speech_dims) + " speech features per frame, " + first.name +
+                  " has " + std::to_string(first.speech_dims));
+    if (c.speech_dims < 0 || c.speech.size() != static_cast<std::size_t>(c.motion.frame_count) *
+                                                    static_cast<std::size_t>(std::max(0, c.speech_dims)))
+      throw Error(c.name + ": its speech features do not cover its frames");
     total += c.motion.frame_count;
   }
   return total;
@@ -58,6 +67,24 @@ void clip_features(const Motion& m, int offset, PoseFeatures& out) {
   }
 }
 
+// Per frame: the mean speed of `joints` (root-relative: the features' positions are, and their
+// velocities are frame steps) over the median of it.
+std::vector<float> upper_body_activity(const PoseFeatures& f, const std::vector<int>& joints) {
+  const Eigen::Index n = f.velocities.cols();
+  std::vector<float> out(static_cast<std::size_t>(n), 0.0f);
+  if (joints.empty() || n == 0) return out;
+  for (Eigen::Index t = 0; t < n; ++t) {
+    double sum = 0.0;
+    for (int j : joints) sum += f.velocities.block<3, 1>(3 * j, t).norm();
+    out[static_cast<std::size_t>(t)] = static_cast<float>(sum / static_cast<double>(joints.size()));
+  }
+  std::vector<float> sorted = out;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const float median = sorted[sorted.size() / 2];
+  for (float& a : out) a = median > 0.0f ? a / median : 0.0f;
+  return out;
+}
+
 }  // namespace
 
 MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
@@ -68,6 +95,8 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   g.params = params;
   g.motion = motion_rest(first.skeleton, first.fps, 0);
   g.motion.frame_count = total;
+  g.speech_dims = clips.front().speech_dims;
+  g.speech.reserve(static_cast<std::size_t>(total) * static_cast<std::size_t>(g.speech_dims));
   const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
   if (clips.size() > 1) {
     g.motion.rotations.reserve(samples);
@@ -83,6 +112,7 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (ClipEvents& c : clips) {
     const Motion& m = c.motion;
     g.clips.push_back({c.name, offset, m.frame_count});
+    g.speech.insert(g.speech.end(), c.speech.begin(), c.speech.end());
     clip_features(m, offset, features);
     mark_key_nodes(builder.nodes(), offset, c,
                    capture_jump_frames(features.positions.middleCols(offset, m.frame_count), params));
@@ -106,6 +136,8 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   }
   for (int f = 0; f + 1 < total; ++f)
     if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
+
+  if (g.has_speech()) g.activity = upper_body_activity(features, upper_body_joints(g.motion.skeleton));
 
   ContinuityProgress analysed;
   if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };

@@ -1,10 +1,10 @@
 // Saving and loading built graphs.
 //
-// File format (version 2), little-endian:
+// File format (version 3), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges (see write_payload)
+//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload)
 //   u64      checksum of the payload (engine/core/checksum.h)
 // The large parts are flat arrays in the layout they have in memory (motion samples; the edges
 // in compressed sparse row order: row starts, targets, weights, natural flags), so a load is
@@ -27,7 +27,7 @@ namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;  // 3: the reference speech features
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -255,6 +255,26 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.vec_of<std::uint32_t>(e, [&](std::size_t i) { return static_cast<std::uint32_t>(csr.m_column[i]); });
   w.vec_of<double>(e, [&](std::size_t i) { return csr.m_edge_properties[i].weight; });
   w.vec_of<std::uint8_t>(e, [&](std::size_t i) { return std::uint8_t{csr.m_edge_properties[i].natural}; });
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
+  w.vec(g.speech);
+  w.vec(g.activity);
+}
+
+// The speech features: none, or frames x dims finite values.
+void read_speech(Reader& r, MotionGraph& g) {
+  const std::uint32_t dims = r.pod<std::uint32_t>();
+  if (dims > 64) r.fail("implausible speech feature count");
+  g.speech_dims = static_cast<int>(dims);
+  g.speech = r.vec<float>();
+  if (g.speech.size() != static_cast<std::size_t>(g.motion.frame_count) * dims)
+    r.fail("speech features disagree with frames x features");
+  for (float v : g.speech)
+    if (!std::isfinite(v)) r.fail("a speech feature is not finite");
+  g.activity = r.vec<float>();
+  if (!g.activity.empty() && g.activity.size() != static_cast<std::size_t>(g.motion.frame_count))
+    r.fail("motion activity disagrees with the frame count");
+  for (float v : g.activity)
+    if (!std::isfinite(v) || v < 0.0f) r.fail("a motion activity is negative or not finite");
 }
 
 std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
@@ -364,7 +384,8 @@ MotionGraph read_payload(Reader& r) {
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count)));
   check_natural_edges(r, g.graph);
-  if (!r.done()) r.fail("trailing bytes after the edges");
+  read_speech(r, g);
+  if (!r.done()) r.fail("trailing bytes after the speech features");
   return g;
 }
 

@@ -59,8 +59,21 @@ struct MotionGraph {
   std::vector<ClipInfo> clips;  // in order, contiguous, covering all frames
   GraphStorage graph;           // num_vertices == motion.frame_count
   GraphParams params;           // what it was built with
+  // The reference speech under every frame (audio/speech_features.h): frame_count x speech_dims
+  // values, frame-major; empty (speech_dims 0) for a graph of clips given without them (a graph
+  // file of format 2), which the planner then matches without speech.
+  std::vector<float> speech;
+  int speech_dims = 0;
+  // How much the upper body moves at every frame: its mean root-relative joint speed over the
+  // graph's median of it (1 = the speaker's typical motion, near 0 = at rest); empty for a graph
+  // without speech features. The speech-driven planner prefers rest where the new speech pauses.
+  std::vector<float> activity;
 
   int frame_count() const { return motion.frame_count; }
+  bool has_speech() const { return speech_dims > 0; }
+  const float* speech_at(int frame) const {
+    return speech.data() + static_cast<std::size_t>(frame) * static_cast<std::size_t>(speech_dims);
+  }
   const NodeInfo& node(int frame) const { return graph[static_cast<std::size_t>(frame)]; }
   bool is_key(int frame) const { return node(frame).kinds != 0; }
   // Key nodes of any kind, ascending.
@@ -73,6 +86,10 @@ struct ClipEvents {
   Motion motion;
   std::vector<int> onset_frames;                            // clip-local frames
   std::vector<std::pair<int, std::string>> keyword_frames;  // clip-local frame, keyword
+  // The clip's speech features, motion.frame_count x speech_dims (audio/speech_features.h), or
+  // empty (speech_dims 0). Every clip of a graph has them, or none does.
+  std::vector<float> speech{};
+  int speech_dims = 0;
 };
 
 // One unnatural edge before it is added.

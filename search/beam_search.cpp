@@ -31,9 +31,18 @@ struct Entry {
   int length;         // nodes in the path
   double weight_sum;  // sum of edge weights along it
   double start_cost;  // what the start node cost (junction cost; 0 in the paper's planner)
+  double extra_sum;   // sum over its frames of the weighted speech and reuse costs
   double cost;
   bool terminated;
 };
+
+// The weighted speech and reuse cost of frame `index` of a path being `frame`.
+double extra_cost(const BeamRequest& r, int index, int frame) {
+  double c = 0.0;
+  if (r.speech && r.speech_weight > 0.0) c += r.speech_weight * r.speech->frame_cost(r.test_start + index, frame);
+  if (r.reuse && r.reuse_weight > 0.0) c += r.reuse_weight * r.reuse->frame_cost(frame, r.time + index);
+  return c;
+}
 
 // The `width` lowest entries, sorted: a partial sort, since each step extends l_npaths paths by
 // every out-edge (thousands of entries on a large graph) to keep l_npaths of them.
@@ -62,8 +71,9 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
   for (std::size_t k = 0; k < request.start_nodes.size(); ++k) {
     tree.push_back({request.start_nodes[k], -1});
     const double start = request.start_costs.empty() ? 0.0 : request.start_costs[k];
-    beam.push_back(
-        {static_cast<int>(tree.size()) - 1, 1, 0.0, start, start + path_cost(0.0, 1, target, params), false});
+    const double extra = extra_cost(request, 0, request.start_nodes[k]);
+    beam.push_back({static_cast<int>(tree.size()) - 1, 1, 0.0, start, extra,
+                    start + extra + path_cost(0.0, 1, target, params), false});
   }
   auto accepted = [&](const Entry& e) { return e.terminated && e.length >= min_len && e.length <= max_len; };
   auto by_cost = [](const Entry& a, const Entry& b) {
@@ -101,10 +111,13 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         Entry x;
         x.tree = static_cast<int>(tree.size()) - 1;
         x.length = e.length + 1;
-        x.weight_sum = e.weight_sum + g.graph[*out].weight;
+        x.weight_sum = e.weight_sum + request.weight_scale * g.graph[*out].weight;
         x.start_cost = e.start_cost;
-        x.cost = x.start_cost + path_cost(x.weight_sum, x.length, target, params);
+        x.extra_sum = e.extra_sum + extra_cost(request, e.length, child);
         x.terminated = is_stop_node(g, child, request);
+        if (x.terminated && request.speech && request.end_weight > 0.0)
+          x.start_cost += request.end_weight * request.speech->end_cost(child);
+        x.cost = x.start_cost + x.extra_sum / x.length + path_cost(x.weight_sum, x.length, target, params);
         next.push_back(x);
       }
     }

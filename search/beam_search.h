@@ -6,7 +6,9 @@
 
 #include "graph/motion_graph.h"
 #include "search/params.h"
+#include "search/reuse.h"
 #include "search/segmentation.h"
+#include "search/speech_match.h"
 
 namespace gmg {
 
@@ -20,6 +22,19 @@ struct BeamRequest {
   // Natural planner: a cost each start node's paths begin with (its junction cost); empty = 0.
   // Size 0 or start_nodes.size().
   std::vector<double> start_costs;
+  // Natural planner: edge weights count as lambda_w * weight_scale * weight (1 / the graph's mean
+  // transition weight, so one typical transition costs lambda_w whatever the length unit).
+  double weight_scale = 1.0;
+  // Natural planner: the speech and reuse costs of a path, mean over its frames (frame i of a path
+  // against test frame test_start + i; reuse at output frame `time`), times their weights. Null:
+  // none.
+  const SpeechMatch* speech = nullptr;
+  double speech_weight = 0.0;
+  double end_weight = 0.0;  // a terminated path also pays end_weight x speech->end_cost(its last frame)
+  int test_start = 0;
+  const ReuseTracker* reuse = nullptr;
+  double reuse_weight = 0.0;
+  int time = 0;
 };
 
 // One accepted path.
@@ -45,7 +60,7 @@ bool is_stop_node(const MotionGraph& g, int f, const BeamRequest& request);
 BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const SearchParams& params);
 
 // Path cost: lambda_w * sum of edge weights + lambda_len * |1 - len / l_sub| (plus the start cost
-// of the path's start node, when the request gives one).
+// of the path's start node, when the request gives one, and the speech and reuse costs).
 double path_cost(double weight_sum, int length, int target_length, const SearchParams& params);
 
 }  // namespace gmg

@@ -19,6 +19,12 @@ namespace gmg {
 std::vector<int> natural_continuation(const MotionGraph& g, int from, const BeamRequest& request,
                                       const SearchParams& params);
 
+// Every natural path from `from` (inclusive) to a stop node of `request` whose length lies within
+// [continue_min, continue_max] x l_sub, shortest first; none when the capture breaks first. The
+// speech-driven planner weighs each against the beam's paths.
+std::vector<std::vector<int>> natural_continuations(const MotionGraph& g, int from, const BeamRequest& request,
+                                                    const SearchParams& params);
+
 // The natural path of exactly `length` frames from `from`, or shorter when the capture breaks
 // first (the natural planner's last fallback plays on instead of freezing).
 std::vector<int> natural_run(const MotionGraph& g, int from, int length);

@@ -48,7 +48,7 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
 
 std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k, int round,
                                             const SearchParams& params, std::mt19937_64& rng,
-                                            const std::vector<double>* junction) {
+                                            const std::vector<double>* start_cost) {
   const std::size_t width = static_cast<std::size_t>(params.l_npaths);
   std::vector<int> out;
   if (params.init == InitMode::Feature && !index.keys.empty()) {
@@ -56,7 +56,7 @@ std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNod
     std::vector<double> distance(index.keys.size());
     for (std::size_t m = 0; m < index.keys.size(); ++m) {
       distance[m] = feature_distance_to(index, ft, m, params);
-      if (junction) distance[m] += params.junction_rank * (*junction)[m];
+      if (start_cost) distance[m] += params.junction_rank * (*start_cost)[m];
     }
     std::vector<std::size_t> order(index.keys.size());
     std::iota(order.begin(), order.end(), 0);

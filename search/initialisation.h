@@ -38,11 +38,12 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
 // Start nodes of attempt `round` for subsequence k: the key nodes of ranks
 // [round * l_npaths, (round + 1) * l_npaths) by d_feat (ties in frame order) with init=feature,
 // then random frames (from rng) once key nodes run out, or all random with init=random.
-// Exactly l_npaths nodes. With `junction` (the natural planner: one junction cost per key node,
-// search/junction.h), the ranking is by d_feat + junction_rank * J.
+// Exactly l_npaths nodes. With `start_cost` (the natural planner: per key node, what starting
+// there is estimated to cost: its junction cost, and the speech and reuse costs of what follows
+// it, already weighted), the ranking is by d_feat + junction_rank * start_cost.
 std::vector<int> initialisation_start_nodes(const MotionGraph& g, const StartNodeIndex& index, std::size_t k, int round,
                                             const SearchParams& params, std::mt19937_64& rng,
-                                            const std::vector<double>* junction = nullptr);
+                                            const std::vector<double>* start_cost = nullptr);
 
 // Counts an accepted path that started at `frame` (when it is a key node) for o_m.
 void initialisation_count_use(StartNodeIndex& index, int frame);

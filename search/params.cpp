@@ -19,7 +19,12 @@ void search_params_validate(const SearchParams& p) {
   require_param(p.continue_min > 0 && p.continue_min <= 1.0 && p.continue_max >= 1.0 && p.continue_max <= 4.0,
                 "continue_min must be in (0, 1] and continue_max in [1, 4]");
   require_param(p.merge_below >= 0 && p.merge_below <= 1000, "merge_below must be in [0, 1000]");
-  require_param(p.variety >= 0, "variety must be >= 0");
+  require_param(p.variety >= 0 && p.variety <= 0.9, "variety must be in [0, 0.9]");
+  require_param(p.speech_weight >= 0 && p.speech_weight <= 1000, "speech_weight must be in [0, 1000]");
+  require_param(p.beat_weight >= 0 && p.beat_weight <= 1000, "beat_weight must be in [0, 1000]");
+  require_param(p.rest_weight >= 0 && p.rest_weight <= 1000, "rest_weight must be in [0, 1000]");
+  require_param(p.reuse_weight >= 0 && p.reuse_weight <= 1000, "reuse_weight must be in [0, 1000]");
+  require_param(p.reuse_halflife_s > 0 && p.reuse_halflife_s <= 1e6, "reuse_halflife_s must be in (0, 1e6]");
 }
 
 }  // namespace gmg

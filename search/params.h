@@ -63,9 +63,27 @@ struct SearchParams {
   // Test subsequences shorter than this (frames) merge into the next: a 1/3 s piece cannot hold
   // a gesture and only adds a junction.
   int merge_below = 10;
-  // Seeded variety: among accepted candidates whose cost is within `variety` of the best, one is
-  // drawn at random, so different seeds give different plausible motions.
-  double variety = 0.1;
+  // Seeded variety (natural planner): the share of the reference's seconds each seed withholds
+  // as places to jump to, so different seeds give clearly different motions (search/planner.cpp).
+  // 0: every seed plans the same.
+  double variety = 0.3;
+
+  // ---- speech-driven (natural planner; search/speech_match.h, search/reuse.h) ----
+  // The knob that trades sync for smoothness: the weight of the speech distance (mean squared
+  // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
+  // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
+  // without speech.
+  double speech_weight = 1.0;
+  // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
+  // (1 = its typical motion) per frame.
+  double rest_weight = 1.0;
+  // Part of the speech cost: beat_weight x the end cost of a path (search/speech_match.h end_cost:
+  // 0 when it ends on a kinematic beat of the reference, 1 far from one).
+  double beat_weight = 0.5;
+  // Weight of the reuse cost (a stretch just played costs 1 per play), and the half-life of a play
+  // in output seconds.
+  double reuse_weight = 1.0;
+  double reuse_halflife_s = 20.0;
 };
 
 // Throws gmg::Error naming the first key out of range.

@@ -1,10 +1,13 @@
 #include "search/planner.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "search/continuation.h"
 #include "search/initialisation.h"
 #include "search/junction.h"
+#include "search/reuse.h"
+#include "search/speech_match.h"
 
 namespace gmg {
 
@@ -22,18 +25,27 @@ int Plan::failure_count() const {
 
 namespace {
 
-// The state of one job's planning: the graph, the ranking index, the junction costs and the
-// generator. In the paper's mode every natural-planner step is skipped.
+int total_frames(const std::vector<Subsequence>& subs) {
+  return subs.empty() ? 0 : subs.back().start + subs.back().length;
+}
+
+// The state of one job's planning: the graph, the ranking index, the junction, speech and reuse
+// costs and the generator. In the paper's mode every natural-planner step is skipped.
 class Planner {
  public:
-  Planner(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params, std::mt19937_64& rng)
+  Planner(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params, std::mt19937_64& rng,
+          const std::vector<float>& test_speech)
       : g_(g),
         subs_(subs),
         params_(params),
         rng_(rng),
         natural_(params.planner == PlannerMode::Natural),
         index_(initialisation_prepare(g, subs, params)),
-        junction_(g) {}
+        junction_(g),
+        speech_(g, natural_ ? test_speech : std::vector<float>{}, total_frames(subs), params.rest_weight),
+        reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps) {
+    if (natural_ && params.variety > 0.0) draw_preferences();
+  }
 
   Plan run() {
     Plan plan;
@@ -42,6 +54,10 @@ class Planner {
     for (std::size_t k = 0; k < subs_.size(); ++k) {
       PlannedSegment seg = plan_one(k, previous_path, previous_clean);
       describe_junction(seg, previous_path);
+      if (natural_) {
+        seg.speech_cost = speech_.path_cost(seg.path, seg.sub.start, seg.sub.length);
+        reuse_.play(seg.path, seg.sub.start);
+      }
       previous_clean = seg.accepted && seg.fallback == Fallback::None;
       previous_path = seg.path;
       plan.segments.push_back(std::move(seg));
@@ -59,30 +75,90 @@ class Planner {
     return out;
   }
 
-  // Start nodes of attempt `round` with their junction costs (natural planner).
+  // Seeded variety: each seed withholds a random share `variety` of the reference's seconds as
+  // places to jump to (continuing through them stays free). Different seeds then build from
+  // different stretches where several suit the speech, as a user expects of a seed, while each
+  // output is still chosen by the same costs from most of the reference. Measured: drawing among
+  // near-equal candidates, or a seeded preference of up to 0.6 per second, left 11 s outputs of
+  // different seeds within 0.03-0.1 of the reference's pose variation of each other.
+  void draw_preferences() {
+    block_ = std::max(1, static_cast<int>(std::lround(g_.motion.fps)));
+    preference_.resize(static_cast<std::size_t>(g_.frame_count() / block_ + 1));
+    const std::uint64_t scale = 1u << 20;
+    const double share = std::min(params_.variety, 0.9);
+    for (double& p : preference_)
+      p = static_cast<double>(random_below(rng_, scale)) < share * static_cast<double>(scale) ? kWithheld : 0.0;
+  }
+  static constexpr double kWithheld = 1e3;
+  double preference(int frame) const {
+    return preference_.empty() ? 0.0 : preference_[static_cast<std::size_t>(frame / block_)];
+  }
+
+  // The window over which a start node's speech and reuse are estimated: the subsequence, within
+  // [10, 60] frames (shorter says little, longer is beyond what the path will play).
+  static int window_of(const Subsequence& sub) { return std::clamp(sub.length, 10, 60); }
+
+  // Start nodes of attempt `round` with their estimated costs (natural planner).
   void ranked_starts(std::size_t k, int round, BeamRequest& request) {
-    const std::vector<double>* junction = nullptr;
-    if (natural_ && reference_ >= 0) {
-      junction_.costs(reference_, index_.keys, key_costs_);
-      junction = &key_costs_;
+    const std::vector<double>* estimate = nullptr;
+    if (natural_) {
+      estimate_start_costs(subs_[k]);
+      estimate = &key_costs_;
     }
-    request.start_nodes = initialisation_start_nodes(g_, index_, k, round, params_, rng_, junction);
+    request.start_nodes = initialisation_start_nodes(g_, index_, k, round, params_, rng_, estimate);
     starts_cost(request);
+  }
+
+  // Per key node: junction_beam * J + speech_weight * speech window + reuse_weight * reuse window.
+  void estimate_start_costs(const Subsequence& sub) {
+    key_costs_.assign(index_.keys.size(), 0.0);
+    if (reference_ >= 0 && params_.junction_beam > 0.0) {
+      junction_.costs(reference_, index_.keys, scratch_);
+      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.junction_beam * scratch_[m];
+    }
+    if (speech_.active() && params_.speech_weight > 0.0) {
+      speech_.window_costs(sub.start, window_of(sub), index_.keys, scratch_);
+      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.speech_weight * scratch_[m];
+    }
+    if (params_.reuse_weight > 0.0) {
+      reuse_.window_costs(window_of(sub), sub.start, index_.keys, scratch_);
+      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.reuse_weight * scratch_[m];
+    }
+    for (std::size_t m = 0; m < index_.keys.size(); ++m)
+      if (index_.keys[m] != reference_) key_costs_[m] += preference(index_.keys[m]);
   }
 
   void starts_cost(BeamRequest& request) {
     request.start_costs.clear();
-    if (!natural_ || reference_ < 0 || params_.junction_beam == 0.0) return;
+    if (!natural_) return;
     for (int s : request.start_nodes)
-      request.start_costs.push_back(params_.junction_beam * junction_.cost(reference_, s));
+      request.start_costs.push_back((reference_ >= 0 && params_.junction_beam > 0.0
+                                         ? params_.junction_beam * junction_.cost(reference_, s)
+                                         : 0.0) +
+                                    preference(s));
   }
 
-  // Among the accepted candidates, the natural planner draws one of those within `variety` of the
-  // best cost; the paper takes the best.
-  const BeamCandidate& choose(std::size_t k, const BeamResult& r) {
-    if (!natural_) return r.candidates.front();
+  // The natural planner's additions to a request: transitions at the graph's own scale, and the
+  // speech and reuse costs of the path's frames.
+  void natural_request(const Subsequence& sub, BeamRequest& request) const {
+    if (!natural_) return;
+    request.weight_scale = 1.0 / junction_.normaliser();
+    request.speech = &speech_;
+    request.speech_weight = params_.speech_weight;
+    request.end_weight = params_.speech_weight * params_.beat_weight;
+    request.test_start = sub.start;
+    request.reuse = &reuse_;
+    request.reuse_weight = params_.reuse_weight;
+    request.time = sub.start;
+  }
+
+  // Among the candidates (sorted by cost), the natural planner draws one of the near-equal ones
+  // (within kNearEqual of the best); the paper takes the best.
+  const BeamCandidate& choose(std::size_t k, const std::vector<BeamCandidate>& candidates) {
+    if (!natural_) return candidates.front();
+    constexpr double kNearEqual = 0.05;
     std::size_t near = 0;
-    while (near < r.candidates.size() && r.candidates[near].cost <= r.candidates.front().cost + params_.variety) ++near;
+    while (near < candidates.size() && candidates[near].cost <= candidates.front().cost + kNearEqual) ++near;
     near = std::max<std::size_t>(near, 1);
     // One step of lookahead: prefer the near-equal paths whose end continues naturally into the
     // next subsequence (a junction avoided there is worth more than the small cost difference).
@@ -95,19 +171,19 @@ class Planner {
       next.keyword = subs_[k + 1].keyword;
       std::vector<std::size_t> good;
       for (std::size_t i = 0; i < near; ++i) {
-        const int stop = r.candidates[i].path.back();  // played as the next subsequence's first frame
+        const int stop = candidates[i].path.back();  // played as the next subsequence's first frame
         if (!natural_continuation(g_, stop, next, params_).empty()) good.push_back(i);
       }
-      if (!good.empty()) return r.candidates[good[random_below(rng_, good.size())]];
+      if (!good.empty()) return candidates[good[random_below(rng_, good.size())]];
     }
-    return r.candidates[random_below(rng_, near)];
+    return candidates[random_below(rng_, near)];
   }
 
-  // Up to 1 + retries beam searches for one request. The first may start from `first_starts`;
-  // *from_first tells whether the accepted one was that first search.
-  BeamResult attempts(std::size_t k, BeamRequest request, const std::vector<int>& first_starts, int* retries) {
+  // Up to `max_attempts` beam searches for one request. The first may start from `first_starts`.
+  BeamResult attempts(std::size_t k, BeamRequest request, const std::vector<int>& first_starts, int* retries,
+                      int max_attempts) {
     int round = 0;
-    for (int attempt = 0; attempt <= params_.retries; ++attempt) {
+    for (int attempt = 0; attempt < max_attempts; ++attempt) {
       if (attempt == 0 && !first_starts.empty()) {
         request.start_nodes = first_starts;
         starts_cost(request);
@@ -116,12 +192,7 @@ class Planner {
       }
       if (attempt > 0) ++*retries;
       BeamResult r = beam_search(g_, request, params_);
-      if (r.accepted) {
-        const BeamCandidate& c = choose(k, r);
-        r.path = c.path;
-        r.cost = c.cost;
-        return r;
-      }
+      if (r.accepted) return r;
     }
     return BeamResult{};
   }
@@ -140,13 +211,29 @@ class Planner {
   }
 
   // A fallback's searches (each one counts as a retry); on success records it in seg.
-  bool try_fallback(std::size_t k, const BeamRequest& request, Fallback fallback, PlannedSegment& seg) {
-    const BeamResult r = attempts(k, request, {}, &seg.retries);
+  bool try_fallback(std::size_t k, BeamRequest request, Fallback fallback, PlannedSegment& seg) {
+    natural_request(seg.sub, request);
+    BeamResult r = attempts(k, request, {}, &seg.retries, params_.retries + 1);
     ++seg.retries;
     if (!r.accepted) return false;
     seg.fallback = fallback;
-    accept(seg, r.path, r.cost);
+    const BeamCandidate& c = choose(k, r.candidates);
+    accept(seg, c.path, c.cost);
     return true;
+  }
+
+  // The natural continuations as candidates: the length mismatch, and the speech and reuse of
+  // what they play (the stop node is the next subsequence's first frame, so it is not played).
+  void add_continuations(const Subsequence& sub, int from, const BeamRequest& request,
+                         std::vector<BeamCandidate>& out) const {
+    for (std::vector<int>& path : natural_continuations(g_, from, request, params_)) {
+      std::vector<int> played(path.begin(), path.end() - 1);
+      const double cost = params_.lambda_len * std::abs(1.0 - static_cast<double>(path.size()) / sub.length) +
+                          params_.speech_weight * (speech_.path_cost(played, sub.start, sub.length) +
+                                                   params_.beat_weight * speech_.end_cost(path.back())) +
+                          params_.reuse_weight * reuse_.path_cost(played, sub.start);
+      out.push_back({std::move(path), cost});
+    }
   }
 
   PlannedSegment plan_one(std::size_t k, const std::vector<int>& previous_path, bool previous_clean) {
@@ -160,21 +247,36 @@ class Planner {
     const int last = previous_path.empty() ? -1 : previous_path.back();
     reference_ = last < 0 ? -1 : (continues(last) ? last + 1 : last);
     seg.junction_from = reference_;
-    if (natural_ && last >= 0 && continues(last)) {
-      const std::vector<int> path = natural_continuation(g_, last + 1, request, params_);
-      if (!path.empty()) {
-        accept(seg, path, std::abs(1.0 - static_cast<double>(path.size()) / seg.sub.length));
-        return seg;
-      }
-    }
+    seg.reuse_cost = 0.0;
     // Paper 4.2.2: after a clean result, the next search starts from the children of its last
     // node. The natural planner always does, since its junction costs price every start.
     std::vector<int> first_starts;
     if (last >= 0 && (previous_clean || natural_)) first_starts = successors(last);
-    BeamResult r = attempts(k, request, first_starts, &seg.retries);
-    if (r.accepted) {
-      accept(seg, r.path, r.cost);
-      return seg;
+    if (natural_) {
+      // The natural continuation competes with the beam's paths on cost: it is taken when what it
+      // plays suits the speech at least as well as a jump to a better-suited stretch would,
+      // junction included.
+      natural_request(seg.sub, request);
+      std::vector<BeamCandidate> candidates;
+      if (last >= 0 && continues(last)) add_continuations(seg.sub, last + 1, request, candidates);
+      // With a continuation at hand one search decides; retries are for when nothing fits.
+      const int max_attempts = candidates.empty() ? params_.retries + 1 : 1;
+      BeamResult r = attempts(k, request, first_starts, &seg.retries, max_attempts);
+      candidates.insert(candidates.end(), r.candidates.begin(), r.candidates.end());
+      if (!candidates.empty()) {
+        std::stable_sort(candidates.begin(), candidates.end(),
+                         [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
+        const BeamCandidate& c = choose(k, candidates);
+        seg.reuse_cost = reuse_.path_cost(c.path, seg.sub.start);
+        accept(seg, c.path, c.cost);
+        return seg;
+      }
+    } else {
+      BeamResult r = attempts(k, request, first_starts, &seg.retries, params_.retries + 1);
+      if (r.accepted) {
+        accept(seg, r.path, r.cost);
+        return seg;
+      }
     }
     if (params_.fallbacks) {
       if (request.kind == Termination::Keyword) {
@@ -221,18 +323,25 @@ class Planner {
   const bool natural_;
   StartNodeIndex index_;
   JunctionCost junction_;
+  SpeechMatch speech_;
+  ReuseTracker reuse_;
   int reference_ = -1;             // the current subsequence's junction reference frame
-  std::vector<double> key_costs_;  // J(reference_, key) for every key node
+  std::vector<double> key_costs_;  // estimated start cost of every key node
+  std::vector<double> scratch_;
+  std::vector<double> preference_;  // per block of the reference: the seed's preference
+  int block_ = 1;
 };
 
 }  // namespace
 
 Plan plan_reenactment(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params,
-                      std::mt19937_64& rng) {
+                      std::mt19937_64& rng, const std::vector<float>& test_speech) {
   search_params_validate(params);
-  if (params.planner == PlannerMode::Natural && params.merge_below > 1)
-    return Planner(g, merge_short_subsequences(subs, params.merge_below), params, rng).run();
-  return Planner(g, subs, params, rng).run();
+  if (params.planner == PlannerMode::Natural && params.merge_below > 1) {
+    const std::vector<Subsequence> merged = merge_short_subsequences(subs, params.merge_below);
+    return Planner(g, merged, params, rng, test_speech).run();
+  }
+  return Planner(g, subs, params, rng, test_speech).run();
 }
 
 }  // namespace gmg

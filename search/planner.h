@@ -30,6 +30,8 @@ struct PlannedSegment {
   double junction_cost = 0.0;  // J(junction_from, path.front()) (search/junction.h); 0 when continued
   double junction_gap = 0.0;   // largest root-relative joint distance of that junction (file units)
   int transitions_inside = 0;  // unnatural edges taken inside the path
+  double speech_cost = 0.0;    // speech distance of the path played onto the subsequence (search/speech_match.h)
+  double reuse_cost = 0.0;     // reuse cost of its frames when it was chosen (search/reuse.h)
 };
 
 struct Plan {
@@ -42,8 +44,10 @@ struct Plan {
 };
 
 // Plans every subsequence in order; rng is the job's one generator. The params are validated
-// first. Always ends, with one path per subsequence.
+// first. Always ends, with one path per subsequence. `test_speech` holds the test speech features
+// (total frames x g.speech_dims, audio/speech_features.h) for the speech-driven costs of the
+// natural planner; empty (or a graph without speech features) plans without them.
 Plan plan_reenactment(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params,
-                      std::mt19937_64& rng);
+                      std::mt19937_64& rng, const std::vector<float>& test_speech = {});
 
 }  // namespace gmg

@@ -6,6 +6,7 @@
 
 #include "audio/audio_file.h"
 #include "engine/core/error.h"
+#include "engine/metrics/behaviour.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
@@ -77,8 +78,12 @@ struct FoldData {
   std::vector<text::Word> test_words;
   Eigen::MatrixXd truth_pos;
   NaturalnessReference reference;  // jerk, acceleration, root speed of the truth; step of the reference part
-  std::vector<int> wrists;
-  SyncControl control;
+  std::vector<int> wrists, upper;
+  std::vector<Leg> legs;
+  std::vector<double> mean_speed;  // per joint, of the reference part (the beat threshold's scale)
+  double pose_variation = 0.0;     // of the reference part
+  int reference_frames = 0;
+  SyncControl control;  // mismatched: the other folds' speech
 };
 
 FoldData prepare_fold(const Recording& rec, const TimeFold& split, const AblationOptions& options) {
@@ -99,9 +104,30 @@ FoldData prepare_fold(const Recording& rec, const TimeFold& split, const Ablatio
     steps.insert(steps.end(), s.begin(), s.end());
   }
   f.reference.step_p999 = percentile(steps, 99.9);
+  // Mean joint speeds and pose variation of the reference part: its pieces joined (the one seam
+  // between two pieces changes neither measurably).
+  Eigen::MatrixXd ref_pos;
+  for (const auto& [a, b] : split.reference) {
+    const Eigen::MatrixXd p = motion_forward_kinematics(motion_slice(rec.motion, a, b)) * f.scale;
+    Eigen::MatrixXd joined(ref_pos.rows() + p.rows(), p.cols());
+    joined << ref_pos, p;
+    ref_pos.swap(joined);
+    f.reference_frames += b - a;
+  }
   f.wrists = wrist_joints(rec.motion.skeleton);
+  f.upper = upper_body_joints(rec.motion.skeleton);
+  f.legs = find_legs(rec.motion.skeleton);
+  f.mean_speed = joint_mean_speeds(ref_pos, f.fps);
+  f.pose_variation = pose_variation(ref_pos);
   f.control = sync_control(f.test_audio, options.control_shifts, options.min_shift_s);
   return f;
+}
+
+// Every fold's speech is the other folds' mismatched speech.
+void add_mismatched_speech(std::vector<FoldData>& folds) {
+  for (std::size_t i = 0; i < folds.size(); ++i)
+    for (std::size_t j = 0; j < folds.size(); ++j)
+      if (j != i) folds[i].control.mismatched.push_back(folds[j].control.aligned);
 }
 
 // A graph of the fold's reference pieces, and the test speech analysed with the same parameters.
@@ -123,6 +149,8 @@ Prepared prepare_graph(const Recording& rec, const FoldData& fold, const GraphPa
                                           fold.fps, b - a, gp, lexicon);
     clip.onset_frames = ev.onset_frames;
     clip.keyword_frames = ev.keyword_frames;
+    clip.speech = ev.features.values;
+    clip.speech_dims = audio::SpeechFeatures::kDims;
     clips.push_back(std::move(clip));
   }
   Prepared p;
@@ -203,18 +231,44 @@ Plan random_chunks_plan(const MotionGraph& g, int length, int chunk, std::mt1993
   return plan;
 }
 
-AblationScore score(const Motion& m, const Plan& plan, const FoldData& fold, const MetricParams& mp) {
-  const Eigen::MatrixXd pos = motion_forward_kinematics(m) * fold.scale;
-  AblationScore s;
-  s.syn = metric_syn(pos, fold.truth_pos, fold.fps);
+SyncScores sync_scores(const Eigen::MatrixXd& pos, const FoldData& fold, const MetricParams& mp) {
+  SyncScores s;
   const ControlledScore bc = bc_controlled(pos, fold.fps, fold.control, mp);
   s.bc = bc.aligned;
-  s.bc_lift = bc.lift();
+  s.bc_lift = bc.mismatched_lift();
+  s.bc_shift_lift = bc.lift();
   s.bc_shifted_sd = bc.shifted_sd();
   const ControlledScore corr = speech_correlation_controlled(pos, fold.fps, fold.control);
   s.speech_corr = corr.aligned;
-  s.speech_corr_lift = corr.lift();
+  s.speech_corr_lift = corr.mismatched_lift();
+  s.speech_corr_shift_lift = corr.lift();
   s.speech_corr_shifted_sd = corr.shifted_sd();
+  const ControlledScore energy = energy_correlation_controlled(pos, fold.fps, fold.upper, fold.control);
+  s.energy_corr = energy.aligned;
+  s.energy_corr_lift = energy.mismatched_lift();
+  s.energy_corr_mismatched_sd = energy.mismatched_sd();
+  const ControlledScore beat = bc_kinematic_controlled(pos, fold.fps, fold.upper, fold.mean_speed, fold.control);
+  s.beat_bc = beat.aligned;
+  s.beat_bc_lift = beat.mismatched_lift();
+  s.beat_bc_mismatched_sd = beat.mismatched_sd();
+  return s;
+}
+
+BehaviourScores behaviour_scores(const Eigen::MatrixXd& pos, const FoldData& fold) {
+  BehaviourScores b;
+  b.foot_slide = foot_slide_share(pos, fold.fps, fold.legs);
+  const Stillness still = stillness(pos, fold.fps, fold.upper);
+  b.still_share = still.share;
+  b.still_longest_s = still.longest_s;
+  return b;
+}
+
+AblationScore score(const Motion& m, const Eigen::MatrixXd& pos, const Plan& plan, const FoldData& fold,
+                    const MetricParams& mp) {
+  AblationScore s;
+  s.syn = metric_syn(pos, fold.truth_pos, fold.fps);
+  s.sync = sync_scores(pos, fold, mp);
+  s.behaviour = behaviour_scores(pos, fold);
   s.div = metric_div(pos, fold.fps, mp);
   s.hellinger = metric_hellinger_speed(pos, fold.truth_pos, fold.fps, {}, mp);
   if (!fold.wrists.empty()) s.hellinger_wrists = metric_hellinger_speed(pos, fold.truth_pos, fold.fps, fold.wrists, mp);
@@ -224,7 +278,11 @@ AblationScore score(const Motion& m, const Plan& plan, const FoldData& fold, con
   s.root_speed_ratio = n.root_speed_ratio;
   s.jump_ratio = n.jump_ratio;
   s.step_share = n.step_share;
-  s.transitions_per_s = transitions_per_second(source_transitions(source_frames(plan)), m.duration());
+  const std::vector<int> sources = source_frames(plan);
+  s.transitions_per_s = transitions_per_second(source_transitions(sources), m.duration());
+  const Reuse reuse = reference_reuse(sources, fold.reference_frames);
+  s.max_plays_per_min = m.duration() > 0.0 ? reuse.max_plays / (m.duration() / 60.0) : 0.0;
+  s.coverage = reuse.coverage;
   s.failures = plan.failure_count();
   s.subsequences = static_cast<int>(plan.segments.size());
   return s;
@@ -290,13 +348,15 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
   result.hist_bin_width = options.metrics.hist_bin_width;
   for (AblationSetup s : kSetups) result.rows.push_back({s, {}});
 
-  for (const TimeFold& split : folds) {
-    const FoldData fold = prepare_fold(rec, split, options);
-    {
-      const ControlledScore bc = bc_controlled(fold.truth_pos, fold.fps, fold.control, options.metrics);
-      const ControlledScore corr = speech_correlation_controlled(fold.truth_pos, fold.fps, fold.control);
-      result.truth.push_back({bc.aligned, bc.lift(), bc.shifted_sd(), corr.aligned, corr.lift(), corr.shifted_sd()});
-    }
+  std::vector<FoldData> prepared_folds;
+  for (const TimeFold& split : folds) prepared_folds.push_back(prepare_fold(rec, split, options));
+  add_mismatched_speech(prepared_folds);
+  for (const FoldData& fold : prepared_folds) {
+    const TimeFold& split = fold.split;
+    result.truth.push_back(
+        {sync_scores(fold.truth_pos, fold, options.metrics), behaviour_scores(fold.truth_pos, fold)});
+    // Each setup's outputs of this fold, one per seed, for the distance between seeds.
+    std::vector<std::vector<Eigen::MatrixXd>> outputs(result.rows.size());
     // Setups that agree on the graph parameters share one graph and one test analysis.
     std::map<std::pair<double, int>, Prepared> prepared;
     auto prepare = [&](const GraphParams& gp) -> const Prepared& {
@@ -308,7 +368,8 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
     const int test_frames = split.test_end - split.test_first;
     for (std::uint64_t seed : options.seeds) {
       int full_chunk = 0;
-      for (AblationRow& row : result.rows) {
+      for (std::size_t r = 0; r < result.rows.size(); ++r) {
+        AblationRow& row = result.rows[r];
         Config cfg = setup_config(row.setup, base);
         cfg.seed = seed;
         const Prepared& p = prepare(cfg.graph);
@@ -320,16 +381,28 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
                                                         : random_chunks_plan(p.graph, test_frames, full_chunk, rng);
           motion = assemble_motion(p.graph, plan, assembly_params(cfg));
         } else {
-          Reenactment r = reenact_events(p.graph, p.test_events, cfg);
-          plan = std::move(r.plan);
-          motion = std::move(r.motion);
+          Reenactment re = reenact_events(p.graph, p.test_events, cfg);
+          plan = std::move(re.plan);
+          motion = std::move(re.motion);
           if (row.setup == AblationSetup::Full)
             full_chunk = std::max(2, static_cast<int>(std::lround(static_cast<double>(test_frames) /
                                                                   static_cast<double>(plan.segments.size()))));
         }
-        row.scores.push_back(score(motion, plan, fold, options.metrics));
+        outputs[r].push_back(motion_forward_kinematics(motion) * fold.scale);
+        row.scores.push_back(score(motion, outputs[r].back(), plan, fold, options.metrics));
         row.scores.back().test_onsets = static_cast<int>(p.test_events.onset_frames.size());
       }
+    }
+    for (std::size_t r = 0; r < result.rows.size(); ++r) {
+      double nearest = 0.0;
+      for (std::size_t a = 0; a < outputs[r].size(); ++a)
+        for (std::size_t b = a + 1; b < outputs[r].size(); ++b) {
+          const double d = motion_distance(outputs[r][a], outputs[r][b]);
+          nearest = a == 0 && b == 1 ? d : std::min(nearest, d);
+        }
+      const double ratio = fold.pose_variation > 0.0 ? nearest / fold.pose_variation : 0.0;
+      const std::size_t first = result.rows[r].scores.size() - outputs[r].size();
+      for (std::size_t k = first; k < result.rows[r].scores.size(); ++k) result.rows[r].scores[k].seed_distance = ratio;
     }
   }
   return result;

@@ -13,10 +13,13 @@
 //                        seed: natural motion, no speech sync
 //   random_chunks        reference chunks of the full system's mean path length (output frames
 //                        per subsequence), joined with the full system's blending
-// Columns (engine/metrics): syn, bc and its lift, speech-motion correlation and its lift, div,
-// naturalness ratios (jerk, acceleration and root speed to the truth's; jump ratio and share of
-// steps above the reference part's 99.9th percentile step), Hellinger (all joints, wrists),
-// transitions per second, failures. Mean and sample sd over folds x seeds.
+// Columns (engine/metrics): syn, div; sync (bc, the onset-strength correlation, the energy
+// correlation and the kinematic beat consistency, each with its lift over the other folds'
+// speech, the first two also over shifted audio); naturalness ratios (jerk, acceleration and root
+// speed to the truth's; jump ratio and share of steps above the reference part's 99.9th percentile
+// step), Hellinger (all joints, wrists), transitions per second; behaviour (foot sliding, rest,
+// reuse and coverage of the reference, distance between seeds); failures. Mean and sample sd over
+// folds x seeds.
 #pragma once
 
 #include <cstdint>
@@ -69,13 +72,35 @@ struct AblationOptions {
   double min_shift_s = 2.0;
 };
 
+// The sync scores of one motion: each aligned and its lift over mismatched speech (the other
+// folds' speech) and over the circularly shifted test audio (engine/metrics/sync.h).
+struct SyncScores {
+  double bc = 0, bc_lift = 0, bc_shift_lift = 0, bc_shifted_sd = 0;
+  double speech_corr = 0, speech_corr_lift = 0, speech_corr_shift_lift = 0, speech_corr_shifted_sd = 0;
+  double energy_corr = 0, energy_corr_lift = 0, energy_corr_mismatched_sd = 0;
+  double beat_bc = 0, beat_bc_lift = 0, beat_bc_mismatched_sd = 0;
+};
+
+// What the behaviour metrics say of one motion (engine/metrics/behaviour.h).
+struct BehaviourScores {
+  double foot_slide = 0;       // share of frames with a sliding foot
+  double still_share = 0;      // share of still frames
+  double still_longest_s = 0;  // longest still run
+};
+
 // One setup on one fold with one seed.
 struct AblationScore {
-  double syn = 0, bc = 0, bc_lift = 0, bc_shifted_sd = 0;
-  double speech_corr = 0, speech_corr_lift = 0, speech_corr_shifted_sd = 0;
+  SyncScores sync;
+  BehaviourScores behaviour;
+  double syn = 0;
   double div = 0, hellinger = 0, hellinger_wrists = 0;
   double jerk_ratio = 0, acc_ratio = 0, root_speed_ratio = 0, jump_ratio = 0, step_share = 0;
   double transitions_per_s = 0;
+  double max_plays_per_min = 0;  // most plays of one reference frame, per minute of output
+  double coverage = 0;           // share of the fold's reference frames played
+  // The smallest distance between this fold's outputs of two seeds (motion_distance), over the
+  // reference part's pose_variation; the same for every seed of a fold (0 with one seed).
+  double seed_distance = 0;
   int failures = 0;
   int subsequences = 0;  // pieces the output was planned in (the baselines: their chunks)
   int test_onsets = 0;   // onsets the detector found in the test speech
@@ -86,10 +111,10 @@ struct AblationRow {
   std::vector<AblationScore> scores;  // fold-major: scores[fold * seeds + s]
 };
 
-// The truth's own sync scores per fold: what the recording itself allows a metric to see.
+// The truth's own scores per fold: what the recording itself allows a metric to see.
 struct TruthSync {
-  double bc = 0, bc_lift = 0, bc_shifted_sd = 0;
-  double speech_corr = 0, speech_corr_lift = 0, speech_corr_shifted_sd = 0;
+  SyncScores sync;
+  BehaviourScores behaviour;
 };
 
 struct AblationResult {

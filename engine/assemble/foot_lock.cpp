@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "engine/assemble/inertialize.h"
-#include "engine/core/strings.h"
 #include "engine/motion/rotation.h"
 
 namespace gmg {
@@ -14,11 +13,7 @@ namespace {
 constexpr double kContactSpeed = 0.15;   // leg lengths per second
 constexpr double kContactHeight = 0.10;  // leg lengths above the run's lowest point
 constexpr int kMinRun = 3;               // frames: shorter contacts or gaps are noise
-
-bool names_a_foot(const std::string& name) {
-  const std::string n = ascii_lower(name);
-  return n.find("ankle") != std::string::npos || n.find("foot") != std::string::npos;
-}
+constexpr double kStepLift = 0.12;       // leg lengths: the highest step (10 cm for a 0.85 m leg)
 
 // Joints from the root down to j.
 std::vector<int> chain_to(const Skeleton& s, int j) {
@@ -98,27 +93,6 @@ void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& t
 
 }  // namespace
 
-std::vector<Leg> find_legs(const Skeleton& s) {
-  std::vector<Leg> legs;
-  for (int j = 0; j < s.joint_count(); ++j) {
-    if (!names_a_foot(s.joints[static_cast<std::size_t>(j)].name)) continue;
-    bool topmost = true;
-    for (int k = s.joints[static_cast<std::size_t>(j)].parent; k >= 0; k = s.joints[static_cast<std::size_t>(k)].parent)
-      topmost = topmost && !names_a_foot(s.joints[static_cast<std::size_t>(k)].name);
-    if (!topmost) continue;
-    Leg leg;
-    leg.ankle = j;
-    leg.knee = s.joints[static_cast<std::size_t>(j)].parent;
-    leg.hip = leg.knee >= 0 ? s.joints[static_cast<std::size_t>(leg.knee)].parent : -1;
-    if (leg.hip < 0 || s.joints[static_cast<std::size_t>(leg.hip)].parent < 0) continue;
-    leg.length = glm::length(s.joints[static_cast<std::size_t>(leg.knee)].offset) +
-                 glm::length(s.joints[static_cast<std::size_t>(leg.ankle)].offset);
-    if (leg.length > 0.0) legs.push_back(leg);
-  }
-  if (legs.size() != 2) legs.clear();
-  return legs;
-}
-
 std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>& continues,
                                    const std::vector<Leg>& legs) {
   std::vector<FootTrack> out;
@@ -136,6 +110,7 @@ std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>
     }
     const std::vector<glm::dvec3>& p = track.pos;
     std::vector<char> contact(static_cast<std::size_t>(source.frame_count), 0);
+    std::vector<char> low(contact.size(), 0);
     for (int first = 0; first < source.frame_count;) {
       int last = first;  // the capture run [first, last]
       while (last + 1 < source.frame_count && continues[static_cast<std::size_t>(last)]) ++last;
@@ -144,14 +119,15 @@ std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>
       for (int f = first; f <= last; ++f) {
         const int g = f > first ? f - 1 : std::min(f + 1, last);
         const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * source.fps;
-        contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg.length &&
-                                               p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg.length;
+        low[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg.length;
+        contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg.length && low[static_cast<std::size_t>(f)];
       }
       first = last + 1;
     }
     drop_short_runs(contact, 0);  // fill short gaps first: a planted foot's noise
     drop_short_runs(contact, 1);
     track.contact = std::move(contact);
+    track.low = std::move(low);
     out.push_back(std::move(track));
   }
   return out;
@@ -171,8 +147,8 @@ void track_at(const FootTrack& t, double time, glm::dvec3& pos, glm::dquat& rot)
 }  // namespace
 
 void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::vector<Leg>& legs,
-               const std::vector<FootTrack>& tracks, double halflife_s) {
-  const double y = spring_damping(halflife_s * out.fps);
+               const std::vector<FootTrack>& tracks, double step_s) {
+  const int step_frames = std::max(3, static_cast<int>(std::lround(step_s * out.fps)));
   std::vector<glm::dquat> wr;
   std::vector<glm::dvec3> wp;
   for (std::size_t l = 0; l < legs.size(); ++l) {
@@ -180,11 +156,17 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
     const FootTrack& track = tracks[l];
     const std::vector<int> chain = chain_to(out.skeleton, leg.ankle);
     bool locked = false;
+    bool held = false;  // locked through a transition, and the new source has not touched down yet
     // While anchored: where the foot is shown, moved each frame by the captured foot's own motion
-    // (not across a transition). On release, offsets in position and orientation that decay.
-    glm::dvec3 anchor(0.0), offset(0.0), offset_vel(0.0), previous(0.0), src_previous(0.0);
-    glm::dquat anchor_rot(1.0, 0.0, 0.0, 0.0), previous_rot = anchor_rot, src_previous_rot = anchor_rot;
-    glm::dvec3 rot_offset(0.0), rot_offset_vel(0.0);
+    // (not across a transition).
+    glm::dvec3 anchor(0.0), src_previous(0.0);
+    glm::dquat anchor_rot(1.0, 0.0, 0.0, 0.0), src_previous_rot = anchor_rot;
+    // A step after a release: from where the foot was (step_pos, step_rot) to where the output's
+    // own leg puts it, over step_frames frames; step_at counts them (step_frames: no step).
+    glm::dvec3 step_pos(0.0), shown(0.0);
+    glm::dquat step_rot = anchor_rot, shown_rot = anchor_rot;
+    double step_height = 0.0;
+    int step_at = step_frames;
     for (int i = 0; i < out.frame_count; ++i) {
       const SourceClock& c = clock[static_cast<std::size_t>(i)];
       chain_world(out, i, chain, wr, wp);
@@ -194,40 +176,55 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
       glm::dquat src_rot;
       track_at(track, c.time, src, src_rot);
       const bool same_run = i > 0 && c.run == clock[static_cast<std::size_t>(i) - 1].run;
-      const bool contact = track.contact[static_cast<std::size_t>(std::floor(c.time))] != 0;
-      const glm::dvec3 velocity = i > 0 ? foot - previous : glm::dvec3(0.0);
-      const glm::dvec3 spin = i > 0 ? quat_to_expmap(foot_rot * glm::conjugate(previous_rot)) : glm::dvec3(0.0);
-      if (locked && same_run) {
+      const std::size_t sf = static_cast<std::size_t>(std::floor(c.time));
+      const bool contact = track.contact[sf] != 0;
+      const bool low = track.low[sf] != 0;
+      if (locked && !same_run && i > 0) held = !contact;
+      if (held && (contact || !low)) held = false;
+      if (locked && same_run && !held) {
         anchor += src - src_previous;
         anchor_rot = glm::normalize((src_rot * glm::conjugate(src_previous_rot)) * anchor_rot);
       }
-      previous = foot;
-      previous_rot = foot_rot;
       src_previous = src;
       src_previous_rot = src_rot;
-      if (!locked) {
-        spring_decay(offset, offset_vel, y, 1.0);
-        spring_decay(rot_offset, rot_offset_vel, y, 1.0);
+      // Where the foot is shown when free: the leg's own pose, or on its way there in a step. The
+      // step blends with smootherstep (position, velocity and acceleration continuous at both
+      // ends) and rises on 16 s^2 (1 - s)^2, which leads the blend: the foot leaves the floor
+      // before it moves along it and lands before it stops.
+      glm::dvec3 free_pos = foot;
+      glm::dquat free_rot = foot_rot;
+      if (step_at < step_frames) {
+        ++step_at;
+        const double s = static_cast<double>(step_at) / step_frames;
+        const double w = s * s * s * (s * (6.0 * s - 15.0) + 10.0);
+        free_pos =
+            (1.0 - w) * step_pos + w * foot + glm::dvec3(0.0, step_height * 16.0 * s * s * (1 - s) * (1 - s), 0.0);
+        free_rot = slerp_shortest(step_rot, foot_rot, w);
       }
       if (contact && !locked) {
         locked = true;
-        anchor = foot + offset;  // where the foot is shown now
-        anchor_rot = expmap_to_quat(rot_offset) * foot_rot;
+        anchor = free_pos;  // where the foot is shown now
+        anchor_rot = free_rot;
+        step_at = step_frames;
       }
       // An anchor the leg can no longer reach (the body moved on) is released too. Standing legs
       // are nearly straight (99.9 % of their length on the test skeleton), so only a target
       // beyond full reach counts.
-      if (locked && (!contact || glm::length(anchor - hip) > leg.length)) {
+      if (locked && ((!contact && !held) || glm::length(anchor - hip) > leg.length)) {
         locked = false;
-        offset = anchor - foot;  // the shown foot stays put this frame...
-        offset_vel = -velocity;  // ...and at rest, then follows the capture again
-        rot_offset = quat_to_expmap(anchor_rot * glm::conjugate(foot_rot));
-        rot_offset_vel = -spin;
+        held = false;
+        // The foot steps from where it was shown to where the leg now puts it, as high as half the
+        // way it has to go (at most kStepLift leg lengths).
+        step_pos = shown;
+        step_rot = shown_rot;
+        step_height = std::min(kStepLift * leg.length, 0.5 * std::hypot(foot.x - shown.x, foot.z - shown.z));
+        step_at = 0;
+        free_pos = shown;
+        free_rot = shown_rot;
       }
-      const glm::dvec3 target = locked ? anchor : foot + offset;
-      const glm::dquat target_rot = locked ? anchor_rot : expmap_to_quat(rot_offset) * foot_rot;
-      if (locked || glm::length(offset) > 1e-9 * leg.length || glm::length(rot_offset) > 1e-9)
-        leg_ik(out, i, chain, target, target_rot);
+      shown = locked ? anchor : free_pos;
+      shown_rot = locked ? anchor_rot : free_rot;
+      if (locked || step_at < step_frames) leg_ik(out, i, chain, shown, shown_rot);
     }
   }
 }

@@ -9,29 +9,21 @@
 // motion matching code) puts it there. When the source lifts the foot, the anchor is released and
 // the difference decays like a transition's.
 //
-// Legs are found by name: the topmost joint of a chain whose name holds "ankle" or "foot" is the
-// effector, its parent the knee, its grandparent the hip (SMPL-X left_ankle; ZEGGS/Mixamo LeftFoot;
-// GENEA b_l_foot_twist). Without exactly two such legs nothing is locked.
+// Legs are found by name (engine/motion/body_parts.h); without exactly two legs nothing is locked.
 #pragma once
 
 #include <vector>
 
 #include "engine/assemble/timeline.h"
+#include "engine/motion/body_parts.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
 
-struct Leg {
-  int hip = -1, knee = -1, ankle = -1;
-  double length = 0.0;  // rest length hip -> knee -> ankle, in file units
-};
-
-// The two legs of a skeleton, or none (see above).
-std::vector<Leg> find_legs(const Skeleton& skeleton);
-
 // One leg's ankle in the source capture, per source frame.
 struct FootTrack {
   std::vector<char> contact;    // on the ground (see foot_tracks)
+  std::vector<char> low;        // near the ground: the height half of the contact test alone
   std::vector<glm::dvec3> pos;  // world position
   std::vector<glm::dquat> rot;  // world orientation
 };
@@ -43,9 +35,16 @@ struct FootTrack {
 std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>& continues,
                                    const std::vector<Leg>& legs);
 
-// Anchors the output's feet where the source (read at `clock`) is in contact; releases decay with
-// the spring of half-life `halflife_s`. `out` is modified in place (hip, knee and ankle rotations).
+// Anchors the output's feet where the source (read at `clock`) is in contact. A released foot
+// steps, over step_s seconds, from where it was to where the output's leg puts it: it rises first
+// and lands at rest, as high as half the way it has to go (at most 0.12 leg lengths), instead of
+// gliding there along the floor. A foot planted when a transition comes stays planted
+// while the new source's foot is still near the ground, even where it moves there: blending a
+// planted foot toward a foot that shuffles along the floor would drag it (the commonest slide
+// of reassembled motion). It is released once the new source lifts the foot (the offset then
+// decays in the air) or the leg cannot reach it; once the new source's foot is in contact
+// again, the anchor follows its small moves as usual. `out` is modified in place (hip, knee and ankle rotations).
 void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::vector<Leg>& legs,
-               const std::vector<FootTrack>& tracks, double halflife_s);
+               const std::vector<FootTrack>& tracks, double step_s);
 
 }  // namespace gmg

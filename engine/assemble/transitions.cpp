@@ -207,7 +207,7 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   }
   if (params.foot_lock) {
     const std::vector<Leg> legs = find_legs(source.skeleton);
-    if (!legs.empty()) foot_lock(out, clock, legs, foot_tracks(source, continues, legs), params.halflife_s);
+    if (!legs.empty()) foot_lock(out, clock, legs, foot_tracks(source, continues, legs), params.foot_step_s);
   }
   return out;
 }

@@ -23,11 +23,14 @@ struct EvaluateArgs {
 void run_evaluate(EvaluateArgs& a) {
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
   const EvaluateInputs& in = a.inputs;
-  check_outputs_apart({{"-o", a.output}, {"--plot", in.plot}}, {{"--generated", in.generated},
-                                                                {"--truth", in.truth},
-                                                                {"--audio", in.audio},
-                                                                {"--report", in.report},
-                                                                {"--reference", in.reference}});
+  std::vector<NamedFile> inputs = {{"--generated", in.generated},
+                                   {"--truth", in.truth},
+                                   {"--audio", in.audio},
+                                   {"--report", in.report},
+                                   {"--reference", in.reference}};
+  for (const std::string& o : in.other_audio) inputs.push_back({"--other-audio", o});
+  if (!in.other_audio.empty() && in.audio.empty()) throw UsageError("--other-audio needs --audio");
+  check_outputs_apart({{"-o", a.output}, {"--plot", in.plot}}, inputs);
   OutputTransaction outputs;  // the plot and the JSON, both or neither
   const EvaluateResult r = evaluate_files(in, a.options);
   if (!a.output.empty()) write_json_file(a.output, r.json);
@@ -46,6 +49,9 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--truth", in.truth, "ground-truth motion, BVH or .npz (same skeleton and length)");
   cmd->add_option("--skeleton", in.skeleton, "BVH whose hierarchy gives .npz motions their skeleton");
   cmd->add_option("--audio", in.audio, "the speech (beat consistency and speech correlation, with a control)");
+  cmd->add_option("--other-audio", in.other_audio,
+                  "other speech (repeatable): every sync metric is also scored against it, as GENEA pairs motion with "
+                  "mismatched speech; lift = own speech minus the mean over these");
   cmd->add_option("--report", in.report, "the reenactment report (failures, fallbacks, transitions, junctions)");
   cmd->add_option("--reference", in.reference,
                   "the reference capture, BVH or graph (.gmg): jump threshold, and ratios when there is no truth");

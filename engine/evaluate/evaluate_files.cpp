@@ -44,6 +44,8 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   }
   audio::Audio sound;
   if (!in.audio.empty()) sound = audio::read_audio(in.audio);
+  std::vector<audio::Audio> others;
+  for (const std::string& path : in.other_audio) others.push_back(audio::read_audio(path));
   const std::vector<Motion> reference =
       in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference, in.skeleton);
   ReportFacts facts;
@@ -59,12 +61,14 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   for (const Motion& m : reference) data.reference.push_back(&m);
   data.reference_name = in.reference;
   if (!in.audio.empty()) data.audio = &sound;
+  for (const audio::Audio& a : others) data.other_audio.push_back(&a);
   if (!in.report.empty()) data.source_frames = &facts.source_frames;
   const nlohmann::ordered_json metrics = evaluate_motions(data, options);
 
   nlohmann::ordered_json inputs = {{"generated", in.generated}};
   if (!in.truth.empty()) inputs["truth"] = in.truth;
   if (!in.audio.empty()) inputs["audio"] = in.audio;
+  if (!in.other_audio.empty()) inputs["other_audio"] = in.other_audio;
   if (!in.reference.empty()) inputs["reference"] = in.reference;
   if (!in.report.empty()) inputs["report"] = in.report;
   result.json["inputs"] = inputs;

@@ -12,14 +12,15 @@
 namespace gmg {
 
 struct EvaluateInputs {
-  std::string generated;  // BVH or SMPL-X .npz (required)
-  std::string truth;      // BVH or .npz, same skeleton and frame count; "" = skip the metrics needing it
-  std::string skeleton;   // BVH skeleton template of the .npz motions (engine/motion/npz.h); "" = none
-  std::string audio;      // the speech (WAV or another audio format); "" = skip the sync metrics
-  std::string report;     // reenactment report JSON; "" = skip failures, fallbacks and transitions
-  std::string reference;  // the reference capture: a BVH or a graph (.gmg); "" = none
-  bool trim = false;      // cut the longer of generated and truth to the shorter (a warning says by how much)
-  std::string plot;       // write a picture (.png or .svg); "" = none
+  std::string generated;                 // BVH or SMPL-X .npz (required)
+  std::string truth;                     // BVH or .npz, same skeleton and frame count; "" = skip the metrics needing it
+  std::string skeleton;                  // BVH skeleton template of the .npz motions (engine/motion/npz.h); "" = none
+  std::string audio;                     // the speech (WAV or another audio format); "" = skip the sync metrics
+  std::vector<std::string> other_audio;  // other speech: the mismatched-speech control
+  std::string report;                    // reenactment report JSON; "" = skip failures, fallbacks and transitions
+  std::string reference;                 // the reference capture: a BVH or a graph (.gmg); "" = none
+  bool trim = false;  // cut the longer of generated and truth to the shorter (a warning says by how much)
+  std::string plot;   // write a picture (.png or .svg); "" = none
 };
 
 struct EvaluateResult {

@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
+#include "engine/metrics/behaviour.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
 
@@ -20,22 +21,18 @@ double length_unit_to_cm(const Skeleton& skeleton) {
   return hi - lo < 5.0 ? 100.0 : 1.0;
 }
 
-std::vector<int> wrist_joints(const Skeleton& skeleton) {
-  std::vector<int> out;
-  for (int j = 0; j < skeleton.joint_count(); ++j)
-    if (ascii_lower(skeleton.joints[j].name).find("wrist") != std::string::npos) out.push_back(j);
-  if (out.empty())
-    for (int j = 0; j < skeleton.joint_count(); ++j)
-      if (ends_with_ci(skeleton.joints[j].name, "hand")) out.push_back(j);
-  return out;
-}
-
 namespace {
 
 nlohmann::ordered_json controlled_json(const ControlledScore& s, const std::vector<double>& shifts) {
-  return {{"aligned", s.aligned},         {"shifted", s.shifted},
-          {"shifts_s", shifts},           {"shifted_mean", s.shifted_mean()},
-          {"shifted_sd", s.shifted_sd()}, {"lift", s.lift()}};
+  nlohmann::ordered_json j = {{"aligned", s.aligned},         {"shifted", s.shifted},
+                              {"shifts_s", shifts},           {"shifted_mean", s.shifted_mean()},
+                              {"shifted_sd", s.shifted_sd()}, {"lift", s.lift()}};
+  if (!s.mismatched.empty()) {
+    j["mismatched"] = s.mismatched;
+    j["mismatched_mean"] = s.mismatched_mean();
+    j["mismatched_lift"] = s.mismatched_lift();
+  }
+  return j;
 }
 
 void check_against(const Motion& generated, const std::string& gen_name, const Motion& other,
@@ -77,6 +74,7 @@ nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const Evaluate
                       {"acceleration_cm_s2", metric_acceleration(gen, fps)},
                       {"div", metric_div(gen, fps, mp)}};
 
+  const std::vector<int> upper = upper_body_joints(generated.skeleton);
   Eigen::MatrixXd tru;
   if (data.truth) {
     check_against(generated, data.generated_name, *data.truth, data.truth_name, true);
@@ -84,15 +82,29 @@ nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const Evaluate
   }
   if (data.audio) {
     if (data.audio->duration() >= 2.0 * options.min_shift_s + 1.0) {
-      const SyncControl control = sync_control(*data.audio, options.control_shifts, options.min_shift_s);
+      SyncControl control = sync_control(*data.audio, options.control_shifts, options.min_shift_s);
+      for (const audio::Audio* other : data.other_audio) control.mismatched.push_back(speech_track(*other));
       const ControlledScore bc = bc_controlled(gen, fps, control, mp);
       out["bc"] = bc.aligned;
       out["bc_control"] = controlled_json(bc, control.shifts_s);
       out["speech_correlation"] = controlled_json(speech_correlation_controlled(gen, fps, control), control.shifts_s);
+      // The beat threshold's scale: the reference's joint speeds, else the truth's, else its own.
+      const std::vector<double> mean_speed =
+          joint_mean_speeds(!data.reference.empty() ? motion_forward_kinematics(*data.reference.front()) * scale
+                                                    : (data.truth ? tru : gen),
+                            fps);
+      out["energy_correlation"] =
+          controlled_json(energy_correlation_controlled(gen, fps, upper, control), control.shifts_s);
+      out["beat_consistency"] =
+          controlled_json(bc_kinematic_controlled(gen, fps, upper, mean_speed, control), control.shifts_s);
       if (data.truth) {
-        out["truth_sync"] = {{"bc", controlled_json(bc_controlled(tru, fps, control, mp), control.shifts_s)},
-                             {"speech_correlation",
-                              controlled_json(speech_correlation_controlled(tru, fps, control), control.shifts_s)}};
+        out["truth_sync"] = {
+            {"bc", controlled_json(bc_controlled(tru, fps, control, mp), control.shifts_s)},
+            {"speech_correlation", controlled_json(speech_correlation_controlled(tru, fps, control), control.shifts_s)},
+            {"energy_correlation",
+             controlled_json(energy_correlation_controlled(tru, fps, upper, control), control.shifts_s)},
+            {"beat_consistency",
+             controlled_json(bc_kinematic_controlled(tru, fps, upper, mean_speed, control), control.shifts_s)}};
       }
     } else {
       out["bc"] = metric_bc(gen, fps, speech_track(*data.audio).onset_times_s, mp);
@@ -155,6 +167,17 @@ nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const Evaluate
     } else {
       out["naturalness"] = {{"transitions_per_s", transitions_per_second(transitions, generated.duration())}};
     }
+  }
+  const Stillness still = stillness(gen, fps, upper);
+  out["behaviour"] = {{"foot_slide", foot_slide_share(gen, fps, find_legs(generated.skeleton))},
+                      {"still_share", still.share},
+                      {"still_longest_s", still.longest_s}};
+  if (data.source_frames && !data.reference.empty()) {
+    int frames = 0;
+    for (const Motion* clip : data.reference) frames += clip->frame_count;
+    const Reuse reuse = reference_reuse(*data.source_frames, frames);
+    out["behaviour"]["max_plays"] = reuse.max_plays;
+    out["behaviour"]["coverage"] = reuse.coverage;
   }
   out["notes"] = notes;
   return out;

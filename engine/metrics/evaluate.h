@@ -9,6 +9,7 @@
 
 #include "audio/wav.h"
 #include "engine/metrics/metrics.h"
+#include "engine/motion/body_parts.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
@@ -17,9 +18,6 @@ namespace gmg {
 // taken to be in metres (BEAT2) and scaled by 100, others are taken as centimetres (GENEA, ZEGGS).
 double length_unit_to_cm(const Skeleton& skeleton);
 
-// Joint indices of the wrists: names containing "wrist", else names ending in "hand".
-std::vector<int> wrist_joints(const Skeleton& skeleton);
-
 struct EvaluateData {
   const Motion* generated = nullptr;  // required
   std::string generated_name;
@@ -27,7 +25,9 @@ struct EvaluateData {
   std::string truth_name;
   std::vector<const Motion*> reference;  // the reference capture's clips (same skeleton); empty = none
   std::string reference_name;
-  const audio::Audio* audio = nullptr;              // the speech; null = skip the sync metrics
+  const audio::Audio* audio = nullptr;  // the speech; null = skip the sync metrics
+  // Other speech (other clips or folds): the mismatched-speech control of every sync metric.
+  std::vector<const audio::Audio*> other_audio;
   const std::vector<int>* source_frames = nullptr;  // graph frames the output was read from (report); null = skip
 };
 
@@ -42,7 +42,10 @@ struct EvaluateOptions {
 // truth {...}, hellinger_speed_all / _wrists when the truth is given; naturalness {jerk_ratio,
 // acc_ratio, root_speed_ratio against the truth, else the reference; jump_ratio, step_share
 // against the reference's 99.9th percentile step, else the truth's; transitions_per_s when the
-// source frames are given}; notes (what was skipped and why). Throws gmg::Error naming both files
+// source frames are given}; energy_correlation and beat_consistency (engine/metrics/sync.h), each
+// with the shifted and, with other_audio, the mismatched-speech control; behaviour {foot_slide,
+// still_share, still_longest_s, and with the source frames and a reference max_plays, coverage};
+// notes (what was skipped and why). Throws gmg::Error naming both files
 // on a skeleton, length or frame-rate mismatch, and naming the motion when it is too short.
 nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const EvaluateOptions& options);
 

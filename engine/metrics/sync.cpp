@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "audio/onset.h"
+#include "audio/speech_energy.h"
 #include "engine/core/error.h"
 #include "engine/metrics/naturalness.h"
 
@@ -38,7 +40,15 @@ audio::Audio circular_shift(const audio::Audio& sound, double shift_s) {
 
 SpeechTrack speech_track(const audio::Audio& sound) {
   const audio::OnsetAnalysis a = audio::detect_onsets(sound, audio::OnsetParams{});
-  return {a.onset_times(), a.envelope};
+  audio::OnsetParams librosa;
+  librosa.min_onset_strength = 0.0;
+  SpeechTrack t;
+  t.onset_times_s = a.onset_times();
+  t.beat_times_s = audio::detect_onsets_in_envelope(a.envelope, librosa).onset_times();
+  t.envelope = a.envelope;
+  t.energy = audio::energy_track(sound);
+  t.duration_s = sound.duration();
+  return t;
 }
 
 SyncControl sync_control(const audio::Audio& sound, int count, double min_shift_s) {
@@ -49,17 +59,26 @@ SyncControl sync_control(const audio::Audio& sound, int count, double min_shift_
   return c;
 }
 
-double ControlledScore::shifted_mean() const {
-  return shifted.empty() ? 0.0 : std::accumulate(shifted.begin(), shifted.end(), 0.0) / shifted.size();
+namespace {
+
+double mean_of(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
-double ControlledScore::shifted_sd() const {
-  if (shifted.size() < 2) return 0.0;
-  const double m = shifted_mean();
+double sd_of(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const double m = mean_of(v);
   double ss = 0.0;
-  for (double x : shifted) ss += (x - m) * (x - m);
-  return std::sqrt(ss / (shifted.size() - 1));
+  for (double x : v) ss += (x - m) * (x - m);
+  return std::sqrt(ss / static_cast<double>(v.size() - 1));
 }
+
+}  // namespace
+
+double ControlledScore::shifted_mean() const { return mean_of(shifted); }
+double ControlledScore::shifted_sd() const { return sd_of(shifted); }
+double ControlledScore::mismatched_mean() const { return mean_of(mismatched); }
+double ControlledScore::mismatched_sd() const { return sd_of(mismatched); }
 
 namespace {
 
@@ -139,11 +158,125 @@ double metric_speech_correlation(const Eigen::MatrixXd& pos, double fps, const s
   return best;
 }
 
+namespace {
+
+// Pearson correlation of a and b over their first min(size) samples; 0 when either is constant.
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  if (n < 3) return 0.0;
+  return correlation_at_lag(std::vector<double>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n)),
+                            std::vector<double>(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n)), 0);
+}
+
+// Root-relative speed of joint j at every frame: central differences, one-sided at the ends.
+std::vector<double> central_speed(const Eigen::MatrixXd& rel, double fps, Eigen::Index j) {
+  const Eigen::Index n = rel.rows();
+  std::vector<double> v(static_cast<std::size_t>(n), 0.0);
+  if (n < 2) return v;
+  for (Eigen::Index t = 0; t < n; ++t) {
+    const Eigen::Index a = std::max<Eigen::Index>(0, t - 1), b = std::min(n - 1, t + 1);
+    v[static_cast<std::size_t>(t)] =
+        (rel.block<1, 3>(b, 3 * j) - rel.block<1, 3>(a, 3 * j)).norm() * fps / static_cast<double>(b - a);
+  }
+  return v;
+}
+
+// The motion's audio-beat track for a speech: its beats inside the motion's span.
+std::vector<double> beats_within(const std::vector<double>& beats, double duration_s) {
+  std::vector<double> out;
+  for (double b : beats)
+    if (b < duration_s) out.push_back(b);
+  return out;
+}
+
+}  // namespace
+
+double metric_energy_correlation(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                 const audio::EnergyTrack& energy, double smooth_s) {
+  if (pos.rows() < 3) throw Error("energy correlation: the motion needs at least 3 frames");
+  if (joints.empty()) throw Error("energy correlation: no upper-body joints");
+  const int frames = static_cast<int>(pos.rows());
+  const Eigen::MatrixXd rel = root_relative(pos);
+  std::vector<double> speed(static_cast<std::size_t>(frames), 0.0);
+  for (int t = 1; t < frames; ++t) {
+    double sum = 0.0;
+    for (int j : joints) sum += (rel.block<1, 3>(t, 3 * j) - rel.block<1, 3>(t - 1, 3 * j)).norm();
+    speed[static_cast<std::size_t>(t)] = sum * fps / static_cast<double>(joints.size());
+  }
+  speed[0] = speed[1];
+  // Frames the speech covers: past its end there is nothing to compare.
+  const int covered =
+      std::min(frames, static_cast<int>(std::floor(
+                           static_cast<double>(energy.mean_square.size()) / audio::EnergyTrack::kRateHz * fps + 0.5)));
+  if (covered < 3) return 0.0;
+  const std::vector<float> db = audio::energy_db_on_grid(energy, fps, covered);
+  const float loudest = *std::max_element(db.begin(), db.end());
+  std::vector<double> loud(db.size());
+  for (std::size_t i = 0; i < db.size(); ++i) loud[i] = std::max(db[i], loudest - 60.0f);
+  speed.resize(static_cast<std::size_t>(covered));
+  const int half = static_cast<int>(std::lround(smooth_s * fps / 2.0));
+  return pearson(moving_average(speed, half), moving_average(loud, half));
+}
+
+std::vector<double> joint_mean_speeds(const Eigen::MatrixXd& pos, double fps) {
+  const Eigen::MatrixXd rel = root_relative(pos);
+  std::vector<double> out;
+  for (Eigen::Index j = 0; j < pos.cols() / 3; ++j) {
+    const std::vector<double> v = central_speed(rel, fps, j);
+    out.push_back(v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()));
+  }
+  return out;
+}
+
+double metric_bc_kinematic(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                           const std::vector<double>& mean_speed, const std::vector<double>& audio_beats_s,
+                           const KinematicBeatParams& params) {
+  if (joints.empty()) throw Error("kinematic beat consistency: no upper-body joints");
+  if (params.order < 1 || !(params.sigma_s > 0.0)) throw Error("kinematic beat consistency: bad parameters");
+  if (audio_beats_s.empty()) return 0.0;
+  const Eigen::MatrixXd rel = root_relative(pos);
+  const double two_sigma2 = 2.0 * params.sigma_s * params.sigma_s;
+  double total = 0.0;
+  for (int j : joints) {
+    if (j < 0 || static_cast<std::size_t>(j) >= mean_speed.size())
+      throw Error("kinematic beat consistency: no mean speed for joint " + std::to_string(j));
+    std::vector<double> v = central_speed(rel, fps, j);
+    const double scale = mean_speed[static_cast<std::size_t>(j)];
+    for (double& x : v) x = scale > 0.0 ? x / scale : 0.0;
+    std::vector<double> beats;
+    const int n = static_cast<int>(v.size());
+    for (int t = 0; t < n; ++t) {
+      if (!(v[static_cast<std::size_t>(t)] > params.threshold)) continue;
+      bool minimum = true;
+      for (int k = 1; k <= params.order && minimum; ++k) {
+        const int a = t - k, b = t + k;
+        minimum = a >= 0 && b < n && v[static_cast<std::size_t>(t)] < v[static_cast<std::size_t>(a)] &&
+                  v[static_cast<std::size_t>(t)] < v[static_cast<std::size_t>(b)];
+      }
+      if (minimum) beats.push_back(t / fps);
+    }
+    double sum = 0.0;
+    if (!beats.empty())
+      for (double b : audio_beats_s) {
+        const auto it = std::lower_bound(beats.begin(), beats.end(), b);
+        double d = std::numeric_limits<double>::infinity();
+        if (it != beats.end()) d = *it - b;
+        if (it != beats.begin()) d = std::min(d, b - *(it - 1));
+        sum += std::exp(-d * d / two_sigma2);
+      }
+    total += sum / static_cast<double>(audio_beats_s.size());
+  }
+  return total / static_cast<double>(joints.size());
+}
+
 ControlledScore bc_controlled(const Eigen::MatrixXd& pos, double fps, const SyncControl& control,
                               const MetricParams& params) {
+  const double duration = static_cast<double>(pos.rows()) / fps;
   ControlledScore s;
   s.aligned = metric_bc(pos, fps, control.aligned.onset_times_s, params);
   for (const SpeechTrack& t : control.shifted) s.shifted.push_back(metric_bc(pos, fps, t.onset_times_s, params));
+  for (const SpeechTrack& t : control.mismatched)
+    s.mismatched.push_back(metric_bc(pos, fps, beats_within(t.onset_times_s, duration), params));
   return s;
 }
 
@@ -151,6 +284,32 @@ ControlledScore speech_correlation_controlled(const Eigen::MatrixXd& pos, double
   ControlledScore s;
   s.aligned = metric_speech_correlation(pos, fps, control.aligned.envelope);
   for (const SpeechTrack& t : control.shifted) s.shifted.push_back(metric_speech_correlation(pos, fps, t.envelope));
+  for (const SpeechTrack& t : control.mismatched)
+    s.mismatched.push_back(metric_speech_correlation(pos, fps, t.envelope));
+  return s;
+}
+
+ControlledScore energy_correlation_controlled(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                              const SyncControl& control) {
+  ControlledScore s;
+  s.aligned = metric_energy_correlation(pos, fps, joints, control.aligned.energy);
+  for (const SpeechTrack& t : control.shifted)
+    s.shifted.push_back(metric_energy_correlation(pos, fps, joints, t.energy));
+  for (const SpeechTrack& t : control.mismatched)
+    s.mismatched.push_back(metric_energy_correlation(pos, fps, joints, t.energy));
+  return s;
+}
+
+ControlledScore bc_kinematic_controlled(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                        const std::vector<double>& mean_speed, const SyncControl& control) {
+  const double duration = static_cast<double>(pos.rows()) / fps;
+  auto bc = [&](const SpeechTrack& t) {
+    return metric_bc_kinematic(pos, fps, joints, mean_speed, beats_within(t.beat_times_s, duration));
+  };
+  ControlledScore s;
+  s.aligned = bc(control.aligned);
+  for (const SpeechTrack& t : control.shifted) s.shifted.push_back(bc(t));
+  for (const SpeechTrack& t : control.mismatched) s.mismatched.push_back(bc(t));
   return s;
 }
 

@@ -9,22 +9,33 @@
 
 #include <Eigen/Core>
 
+#include "audio/speech_energy.h"
 #include "audio/wav.h"
 #include "engine/metrics/metrics.h"
 
 namespace gmg {
 
 // What a metric needs of one version of the audio: the onset times (the BC audio beats, the
-// librosa-style detector at its default threshold) and the onset strength envelope.
+// detector at the graph's default threshold), librosa's own onsets (onset_detect's peaks with no
+// strength threshold, backtracked: the beats EMAGE-style beat consistency uses), the onset
+// strength envelope and the energy.
 struct SpeechTrack {
   std::vector<double> onset_times_s;
+  std::vector<double> beat_times_s;
   std::vector<float> envelope;  // one value per 512 samples at 22050 Hz
+  audio::EnergyTrack energy;
+  double duration_s = 0.0;
 };
 
+// Two controls: the same audio circularly shifted (no synchrony possible with the motion), and
+// other speech (GENEA's appropriateness test pairs a motion with mismatched speech: other folds of
+// the recording, or other clips). A metric against another speech is computed over the frames both
+// span.
 struct SyncControl {
   SpeechTrack aligned;
-  std::vector<double> shifts_s;      // the circular shifts, seconds
-  std::vector<SpeechTrack> shifted;  // one per shift
+  std::vector<double> shifts_s;         // the circular shifts, seconds
+  std::vector<SpeechTrack> shifted;     // one per shift
+  std::vector<SpeechTrack> mismatched;  // other speech; may be empty
 };
 
 // `count` circular shifts spread evenly over [min_shift_s, duration_s - min_shift_s], so each is
@@ -43,10 +54,16 @@ SyncControl sync_control(const audio::Audio& sound, int count = 8, double min_sh
 
 struct ControlledScore {
   double aligned = 0.0;
-  std::vector<double> shifted;  // one per shift
+  std::vector<double> shifted;     // one per shift
+  std::vector<double> mismatched;  // one per other speech
   double shifted_mean() const;
   double shifted_sd() const;  // sample standard deviation of the shifted values
   double lift() const { return aligned - shifted_mean(); }
+  double mismatched_mean() const;
+  double mismatched_sd() const;
+  // aligned - mean(mismatched): what the motion shares with its own speech and not with other
+  // speech. 0 without other speech.
+  double mismatched_lift() const { return mismatched.empty() ? 0.0 : aligned - mismatched_mean(); }
 };
 
 // Speech-motion correlation (unitless, [-1, 1]): log(1 + onset strength) averaged over each motion
@@ -61,9 +78,44 @@ struct ControlledScore {
 double metric_speech_correlation(const Eigen::MatrixXd& pos, double fps, const std::vector<float>& envelope,
                                  double max_lag_s = 0.25);
 
-// BC and the speech correlation against the aligned and every shifted track.
+// Energy correlation (unitless, [-1, 1]): the Pearson correlation of the upper body's motion
+// energy with the speech's loudness, frame by frame, no lag. Motion: the mean root-relative speed
+// |p(t) - p(t-1)| * fps of `joints` (engine/motion/body_parts.h upper_body_joints; frame 0 takes
+// frame 1's). Speech: energy in dB per motion frame (audio/speech_energy.h), floored 60 dB below
+// its loudest frame so digital silence does not decide the result. Both smoothed by a centred
+// moving average of 2 * round(smooth_s * fps / 2) + 1 frames (15 at 30 fps) and compared over the
+// frames both have. A speaker moves more while speaking loudly and rests in pauses; a stretch of
+// motion does not share that with another speech. 0 when either signal is constant. Needs >= 3
+// frames.
+double metric_energy_correlation(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                 const audio::EnergyTrack& energy, double smooth_s = 0.5);
+
+// Kinematic beat consistency, EMAGE's rule (BEAT2's benchmark). Per joint j of `joints`: its
+// root-relative speed (central difference; one-sided at the ends) over mean_speed[j] (the
+// reference capture's mean speed of that joint, joint_mean_speeds); its motion beats are the
+// frames lower than each of the `order` frames on either side (frames past the ends do not count
+// as lower) where that ratio is above `threshold` (a minimum inside a rest is no beat); its score
+// the mean over audio beats of exp(-d^2 / (2 sigma^2)), d the distance to its nearest beat (0
+// without beats). BC = mean over joints. No audio beats: 0.
+struct KinematicBeatParams {
+  double sigma_s = 0.3;
+  int order = 7;
+  double threshold = 0.3;
+};
+double metric_bc_kinematic(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                           const std::vector<double>& mean_speed, const std::vector<double>& audio_beats_s,
+                           const KinematicBeatParams& params = {});
+
+// Each joint's mean root-relative speed (central differences as metric_bc_kinematic takes them).
+std::vector<double> joint_mean_speeds(const Eigen::MatrixXd& pos, double fps);
+
+// BC and the speech correlation against the aligned, every shifted and every mismatched track.
 ControlledScore bc_controlled(const Eigen::MatrixXd& pos, double fps, const SyncControl& control,
                               const MetricParams& params);
 ControlledScore speech_correlation_controlled(const Eigen::MatrixXd& pos, double fps, const SyncControl& control);
+ControlledScore energy_correlation_controlled(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                              const SyncControl& control);
+ControlledScore bc_kinematic_controlled(const Eigen::MatrixXd& pos, double fps, const std::vector<int>& joints,
+                                        const std::vector<double>& mean_speed, const SyncControl& control);
 
 }  // namespace gmg

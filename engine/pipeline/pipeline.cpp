@@ -31,11 +31,12 @@ text::Lexicon lexicon_for(const GraphParams& params) {
 
 namespace {
 
-SpeechTimes times_of(audio::OnsetAnalysis onsets, double duration_s, const std::vector<text::Word>* words,
-                     const std::string& name) {
+SpeechTimes times_of(audio::OnsetAnalysis onsets, audio::EnergyTrack energy, double duration_s,
+                     const std::vector<text::Word>* words, const std::string& name) {
   SpeechTimes t;
   t.duration_s = duration_s;
   t.onsets = std::move(onsets);
+  t.energy = std::move(energy);
   t.name = name;
   if (words) {
     text::check_transcript_fits(*words, duration_s, name);
@@ -63,6 +64,7 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
   ev.total_frames = frame_count >= 0 ? frame_count : static_cast<int>(std::lround(ev.duration_s * fps));
   if (ev.total_frames < 1) throw Error(times.name + ": audio is shorter than one motion frame");
   ev.onset_frames = audio::onset_motion_frames(times.onsets, fps, ev.total_frames);
+  ev.features = audio::speech_features(times.energy, times.onsets.envelope, fps, ev.total_frames);
   if (times.has_words) {
     ev.words = static_cast<int>(times.words.size());
     for (const text::KeywordFrame& k :
@@ -74,7 +76,8 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
 
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
                            double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
-  const SpeechTimes t = times_of(audio::detect_onsets(sound, onset_params_of(params)), sound.duration(), words, name);
+  const SpeechTimes t = times_of(audio::detect_onsets(sound, onset_params_of(params)), audio::energy_track(sound),
+                                 sound.duration(), words, name);
   return speech_events_on_grid(t, fps, frame_count, lexicon);
 }
 
@@ -86,8 +89,9 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
   const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
   // Checked before the long onset analysis: a transcript of another recording fails at once.
   if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
+  audio::EnergyTrack energy = audio::energy_track(sound);
   audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
-  return times_of(std::move(onsets), duration_s, files.transcript.empty() ? nullptr : &words, name);
+  return times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
 }
 
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
@@ -111,6 +115,8 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
   const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);
   in.onset_frames = ev.onset_frames;
   in.keyword_frames = ev.keyword_frames;
+  in.speech = ev.features.values;
+  in.speech_dims = audio::SpeechFeatures::kDims;
   return in;
 }
 
@@ -185,7 +191,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   std::mt19937_64 rng(config.seed);
   const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
   Reenactment r;
-  r.plan = plan_reenactment(g, subs, config.search, rng);
+  r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
   r.motion = assemble_motion(g, r.plan, assembly_params(config));
 
   r.report = reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton));

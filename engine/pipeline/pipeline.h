@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "audio/onset.h"
+#include "audio/speech_features.h"
 #include "audio/wav.h"
 #include "engine/config/config.h"
 #include "engine/motion/motion.h"
@@ -35,6 +36,7 @@ struct SpeechEvents {
   std::vector<int> onset_frames;  // ascending, unique, in [0, total_frames)
   std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
   int words = 0;                                            // transcript words read
+  audio::SpeechFeatures features;                           // total_frames frames
 };
 
 // Detects onsets (SPEC "Onset nodes") and keywords in a speech. frame_count < 0 means a test
@@ -49,6 +51,7 @@ SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_coun
 struct SpeechTimes {
   double duration_s = 0.0;
   audio::OnsetAnalysis onsets;
+  audio::EnergyTrack energy;
   std::vector<text::Word> words;
   bool has_words = false;
   std::string name;  // labels errors: the transcript's file name, else the audio's

@@ -75,8 +75,8 @@ TEST_F(AblationRun, SevenSetupsOverFoldsAndSeeds) {
     ASSERT_EQ(result_->rows[i].scores.size(), 6u);  // 3 folds x 2 seeds
     for (const AblationScore& s : result_->rows[i].scores) {
       EXPECT_GT(s.syn, 0.0);
-      EXPECT_GE(s.bc, 0.0);
-      EXPECT_LE(s.bc, 1.0);
+      EXPECT_GE(s.sync.bc, 0.0);
+      EXPECT_LE(s.sync.bc, 1.0);
       EXPECT_GT(s.jerk_ratio, 0.0);
       EXPECT_GE(s.hellinger, 0.0);
       EXPECT_LE(s.hellinger, 1.0);

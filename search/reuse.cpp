@@ -1,0 +1,48 @@
+#include "search/reuse.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gmg {
+
+ReuseTracker::ReuseTracker(int frames, double halflife)
+    : count_(static_cast<std::size_t>(std::max(0, frames)), 0.0),
+      last_(count_.size(), 0),
+      decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)) {}
+
+double ReuseTracker::frame_cost(int f, int time) const {
+  const std::size_t k = static_cast<std::size_t>(f);
+  if (count_[k] == 0.0) return 0.0;
+  return count_[k] * std::exp(-decay_per_frame_ * std::max(0, time - last_[k]));
+}
+
+void ReuseTracker::play(const std::vector<int>& path, int time) {
+  int previous = -1;
+  for (int f : path) {
+    if (f == previous) continue;  // a held frame is one play
+    const std::size_t k = static_cast<std::size_t>(f);
+    count_[k] = frame_cost(f, time) + 1.0;
+    last_[k] = time;
+    previous = f;
+  }
+}
+
+double ReuseTracker::path_cost(const std::vector<int>& path, int time) const {
+  if (path.empty()) return 0.0;
+  double sum = 0.0;
+  for (int f : path) sum += frame_cost(f, time);
+  return sum / static_cast<double>(path.size());
+}
+
+void ReuseTracker::window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const {
+  out.assign(frames.size(), 0.0);
+  if (window < 1 || count_.empty()) return;
+  const int last = static_cast<int>(count_.size()) - 1;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    double sum = 0.0;
+    for (int i = 0; i < window; ++i) sum += frame_cost(std::min(frames[k] + i, last), time);
+    out[k] = sum / window;
+  }
+}
+
+}  // namespace gmg

@@ -1,0 +1,112 @@
+#include "search/speech_match.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/error.h"
+
+namespace gmg {
+namespace {
+
+// Loudness, onset activity (audio/speech_features.h); further features weigh like onsets.
+double dim_weight(int d) { return d == 0 ? 1.0 : 0.5; }
+
+}  // namespace
+
+SpeechMatch::SpeechMatch(const MotionGraph& g, const std::vector<float>& test, int test_frames, double rest_weight)
+    : g_(g), test_(test), test_frames_(test_frames), rest_weight_(rest_weight) {
+  active_ = g.has_speech() && !test.empty() && test_frames > 0;
+  if (!active_) return;
+  if (test.size() != static_cast<std::size_t>(test_frames) * static_cast<std::size_t>(g.speech_dims))
+    throw Error("speech match: the test speech has " + std::to_string(test.size()) + " feature values for " +
+                std::to_string(test_frames) + " frames of " + std::to_string(g.speech_dims) + " features");
+  if (g.activity.size() != static_cast<std::size_t>(g.frame_count())) rest_weight_ = 0.0;
+  pause_.resize(static_cast<std::size_t>(test_frames));
+  for (int t = 0; t < test_frames; ++t) {
+    const float loudness = test[static_cast<std::size_t>(t) * static_cast<std::size_t>(g.speech_dims)];
+    pause_[static_cast<std::size_t>(t)] = std::clamp((-loudness - 2.0f) / 1.5f, 0.0f, 1.0f);
+  }
+  run_last_.resize(static_cast<std::size_t>(g.frame_count()));
+  int last = g.frame_count() - 1;
+  for (int f = g.frame_count() - 1; f >= 0; --f) {
+    if (g.node(f).kinds & kBreakNode) last = f;
+    run_last_[static_cast<std::size_t>(f)] = last;
+  }
+  if (g.activity.size() == static_cast<std::size_t>(g.frame_count())) beat_costs();
+}
+
+void SpeechMatch::beat_costs() {
+  constexpr int kOrder = 4;
+  constexpr float kMinActivity = 0.3f;
+  constexpr double kSigmaS = 0.1;
+  const int n = g_.frame_count();
+  const std::vector<float>& a = g_.activity;
+  std::vector<int> beats;
+  for (int f = 0; f < n; ++f) {
+    if (!(a[static_cast<std::size_t>(f)] > kMinActivity)) continue;
+    bool minimum = true;
+    const int last = run_last_[static_cast<std::size_t>(f)];
+    for (int k = 1; k <= kOrder && minimum; ++k) {
+      const int lo = f - k, hi = f + k;
+      minimum = lo >= 0 && hi <= last && run_last_[static_cast<std::size_t>(lo)] == last &&
+                a[static_cast<std::size_t>(f)] < a[static_cast<std::size_t>(lo)] &&
+                a[static_cast<std::size_t>(f)] < a[static_cast<std::size_t>(hi)];
+    }
+    if (minimum) beats.push_back(f);
+  }
+  end_cost_.assign(static_cast<std::size_t>(n), 1.0f);
+  const double two_sigma2 = 2.0 * (kSigmaS * g_.motion.fps) * (kSigmaS * g_.motion.fps);
+  std::size_t b = 0;
+  for (int f = 0; f < n; ++f) {
+    while (b + 1 < beats.size() && beats[b + 1] <= f) ++b;
+    double d = 1e9;
+    for (std::size_t k = b; k < std::min(beats.size(), b + 2); ++k)
+      if (run_last_[static_cast<std::size_t>(beats[k])] == run_last_[static_cast<std::size_t>(f)])
+        d = std::min(d, std::abs(static_cast<double>(beats[k] - f)));
+    end_cost_[static_cast<std::size_t>(f)] = static_cast<float>(1.0 - std::exp(-d * d / two_sigma2));
+  }
+}
+
+double SpeechMatch::end_cost(int f) const {
+  return active_ && !end_cost_.empty() ? end_cost_[static_cast<std::size_t>(f)] : 0.0;
+}
+
+double SpeechMatch::frame_cost(int t, int f) const {
+  if (!active_) return 0.0;
+  t = std::clamp(t, 0, test_frames_ - 1);
+  const float* a = test_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(g_.speech_dims);
+  const float* b = g_.speech_at(f);
+  double sum = 0.0;
+  for (int d = 0; d < g_.speech_dims; ++d) {
+    const double x = static_cast<double>(a[d]) - static_cast<double>(b[d]);
+    sum += dim_weight(d) * x * x;
+  }
+  if (rest_weight_ > 0.0)
+    sum += rest_weight_ * pause_[static_cast<std::size_t>(t)] * g_.activity[static_cast<std::size_t>(f)];
+  return sum;
+}
+
+double SpeechMatch::path_cost(const std::vector<int>& path, int start, int length) const {
+  if (!active_ || path.empty() || length < 1) return 0.0;
+  const int n = static_cast<int>(path.size());
+  double sum = 0.0;
+  for (int i = 0; i < length; ++i) {
+    const int k = length > 1 ? static_cast<int>(std::lround(static_cast<double>(i) * (n - 1) / (length - 1))) : 0;
+    sum += frame_cost(start + i, path[static_cast<std::size_t>(k)]);
+  }
+  return sum / length;
+}
+
+void SpeechMatch::window_costs(int start, int window, const std::vector<int>& frames, std::vector<double>& out) const {
+  out.assign(frames.size(), 0.0);
+  if (!active_ || window < 1) return;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const int s = frames[k];
+    const int last = run_last_[static_cast<std::size_t>(s)];
+    double sum = 0.0;
+    for (int i = 0; i < window; ++i) sum += frame_cost(start + i, std::min(s + i, last));
+    out[k] = sum / window;
+  }
+}
+
+}  // namespace gmg
