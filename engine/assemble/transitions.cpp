@@ -1,6 +1,7 @@
 #include "engine/assemble/transitions.h"
 
 #include <cmath>
+#include <limits>
 
 #include "engine/assemble/foot_lock.h"
 #include "engine/assemble/inertialize.h"
@@ -176,7 +177,18 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   const double anchor_factor = anchor_root ? std::exp(-std::log(2.0) / (params.root_halflife_s * source.fps)) : 1.0;
   // The pull back never makes the root step further than the capture's own largest step: it
   // spends at most half of what the current source step leaves of it.
+  const double anchor_factor_outside =
+      anchor_root ? std::exp(-std::log(2.0) / (0.2 * params.root_halflife_s * source.fps)) : 1.0;
   const double root_step_limit = largest_root_step(source, continues);
+  // The capture's standing area: the horizontal extent of its root, widened by a tenth.
+  glm::dvec3 area_lo(std::numeric_limits<double>::infinity()), area_hi(-std::numeric_limits<double>::infinity());
+  for (int f = 0; f < source.frame_count; ++f) {
+    area_lo = glm::min(area_lo, source.translation(f, 0));
+    area_hi = glm::max(area_hi, source.translation(f, 0));
+  }
+  const glm::dvec3 margin = 0.1 * (area_hi - area_lo);
+  area_lo -= margin;
+  area_hi += margin;
 
   Offsets off(joints);
   Pose dst, previous, old_pose;
@@ -188,7 +200,13 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
       off.decay(y);
       if (anchor_root && c.run == clock[i - 1].run) {  // a transition frame has its own step
         const glm::dvec3 d = dst.tr[0] - previous.tr[0];
-        off.relax_anchor(anchor_factor, 0.5 * std::max(0.0, root_step_limit - std::hypot(d.x, d.z)));
+        // Outside the capture's standing area the pull back is five times as fast and may spend the
+        // whole step budget: many transitions in a row must not walk the speaker off the floor the
+        // capture used.
+        const glm::dvec3 at = dst.tr[0] + off.anchor;
+        const bool outside = at.x < area_lo.x || at.x > area_hi.x || at.z < area_lo.z || at.z > area_hi.z;
+        off.relax_anchor(outside ? anchor_factor_outside : anchor_factor,
+                         (outside ? 1.0 : 0.5) * std::max(0.0, root_step_limit - std::hypot(d.x, d.z)));
       }
       if (c.run != clock[i - 1].run) {
         old_source_next(reader, clock[i - 1], previous, previous_vel, old_pose, old_vel);
