@@ -30,4 +30,11 @@ struct SpeechFeatures {
 SpeechFeatures speech_features(const EnergyTrack& energy, const std::vector<float>& envelope, double fps, int frames,
                                double smooth_s = 0.3);
 
+// How much a frame of loudness `loudness` (as above) is a pause: 0 down to 20 dB below the speaking
+// level, rising to 1 at 35 dB below.
+inline float pause_weight(float loudness) {
+  const float w = (-loudness - 2.0f) / 1.5f;
+  return w < 0.0f ? 0.0f : (w > 1.0f ? 1.0f : w);
+}
+
 }  // namespace gmg::audio

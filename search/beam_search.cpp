@@ -31,17 +31,21 @@ struct Entry {
   int length;         // nodes in the path
   double weight_sum;  // sum of edge weights along it
   double start_cost;  // what the start node cost (junction cost; 0 in the paper's planner)
-  double extra_sum;   // sum over its frames of the weighted speech and reuse costs
+  double extra_sum;   // sum over its frames of the weighted speech costs
+  double reuse_max;   // the most recently replayed of its frames: its weighted reuse cost
+  int run;            // frames since its start or its last unnatural edge
   double cost;
   bool terminated;
 };
 
-// The weighted speech and reuse cost of frame `index` of a path being `frame`.
+// The weighted speech cost of frame `index` of a path being `frame`.
 double extra_cost(const BeamRequest& r, int index, int frame) {
-  double c = 0.0;
-  if (r.speech && r.speech_weight > 0.0) c += r.speech_weight * r.speech->frame_cost(r.test_start + index, frame);
-  if (r.reuse && r.reuse_weight > 0.0) c += r.reuse_weight * r.reuse->frame_cost(frame, r.time + index);
-  return c;
+  return r.speech && r.speech_weight > 0.0 ? r.speech_weight * r.speech->frame_cost(r.test_start + index, frame) : 0.0;
+}
+
+// The weighted reuse cost of that frame.
+double reuse_cost(const BeamRequest& r, int index, int frame) {
+  return r.reuse && r.reuse_weight > 0.0 ? r.reuse_weight * r.reuse->frame_cost(frame, r.time + index) : 0.0;
 }
 
 // The `width` lowest entries, sorted: a partial sort, since each step extends l_npaths paths by
@@ -72,8 +76,9 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
     tree.push_back({request.start_nodes[k], -1});
     const double start = request.start_costs.empty() ? 0.0 : request.start_costs[k];
     const double extra = extra_cost(request, 0, request.start_nodes[k]);
-    beam.push_back({static_cast<int>(tree.size()) - 1, 1, 0.0, start, extra,
-                    start + extra + path_cost(0.0, 1, target, params), false});
+    const double reuse = reuse_cost(request, 0, request.start_nodes[k]);
+    beam.push_back({static_cast<int>(tree.size()) - 1, 1, 0.0, start, extra, reuse, 1,
+                    start + extra + reuse + path_cost(0.0, 1, target, params), false});
   }
   auto accepted = [&](const Entry& e) { return e.terminated && e.length >= min_len && e.length <= max_len; };
   auto by_cost = [](const Entry& a, const Entry& b) {
@@ -107,6 +112,8 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
       const int frame = tree[static_cast<std::size_t>(e.tree)].frame;
       for (auto [out, end] = boost::out_edges(static_cast<std::size_t>(frame), g.graph); out != end; ++out) {
         const int child = static_cast<int>(boost::target(*out, g.graph));
+        const bool natural = g.graph[*out].natural;
+        if (!natural && e.run < request.min_run) continue;
         tree.push_back({child, e.tree});
         Entry x;
         x.tree = static_cast<int>(tree.size()) - 1;
@@ -114,10 +121,13 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         x.weight_sum = e.weight_sum + request.weight_scale * g.graph[*out].weight;
         x.start_cost = e.start_cost;
         x.extra_sum = e.extra_sum + extra_cost(request, e.length, child);
+        x.reuse_max = std::max(e.reuse_max, reuse_cost(request, e.length, child));
+        x.run = natural ? e.run + 1 : 1;
         x.terminated = is_stop_node(g, child, request);
         if (x.terminated && request.speech && request.end_weight > 0.0)
           x.start_cost += request.end_weight * request.speech->end_cost(child);
-        x.cost = x.start_cost + x.extra_sum / x.length + path_cost(x.weight_sum, x.length, target, params);
+        x.cost =
+            x.start_cost + x.extra_sum / x.length + x.reuse_max + path_cost(x.weight_sum, x.length, target, params);
         next.push_back(x);
       }
     }

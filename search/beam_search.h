@@ -25,6 +25,9 @@ struct BeamRequest {
   // Natural planner: edge weights count as lambda_w * weight_scale * weight (1 / the graph's mean
   // transition weight, so one typical transition costs lambda_w whatever the length unit).
   double weight_scale = 1.0;
+  // Natural planner: an unnatural edge may be taken only after this many frames of natural motion
+  // since the path's start or its last unnatural edge (0: any time, the paper's beam).
+  int min_run = 0;
   // Natural planner: the speech and reuse costs of a path, mean over its frames (frame i of a path
   // against test frame test_start + i; reuse at output frame `time`), times their weights. Null:
   // none.

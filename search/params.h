@@ -81,9 +81,11 @@ struct SearchParams {
   // 0 when it ends on a kinematic beat of the reference, 1 far from one).
   double beat_weight = 0.5;
   // Weight of the reuse cost (a stretch just played costs 1 per play), and the half-life of a play
-  // in output seconds.
-  double reuse_weight = 1.0;
-  double reuse_halflife_s = 20.0;
+  // in output seconds. A replay is worth it only when the speech distance it saves, at most about
+  // speech_weight (1 = unrelated speech), exceeds reuse_weight x its decayed plays: with 3 and 30 s
+  // a stretch that alone suits the speech comes back after some 45 s, at most 3 times in 90 s.
+  double reuse_weight = 3.0;
+  double reuse_halflife_s = 30.0;
 };
 
 // Throws gmg::Error naming the first key out of range.

@@ -143,6 +143,10 @@ class Planner {
   void natural_request(const Subsequence& sub, BeamRequest& request) const {
     if (!natural_) return;
     request.weight_scale = 1.0 / junction_.normaliser();
+    // Two transitions within a quarter second overlap their blends (a hub frame used as a
+    // stepping stone between two stretches): 1-frame visits made up most of the most replayed
+    // frames on BEAT2.
+    request.min_run = static_cast<int>(std::lround(0.25 * g_.motion.fps));
     request.speech = &speech_;
     request.speech_weight = params_.speech_weight;
     request.end_weight = params_.speech_weight * params_.beat_weight;
@@ -160,6 +164,10 @@ class Planner {
     std::size_t near = 0;
     while (near < candidates.size() && candidates[near].cost <= candidates.front().cost + kNearEqual) ++near;
     near = std::max<std::size_t>(near, 1);
+    // Among near-equal candidates, playing on beats a jump: a junction avoided is worth more than
+    // the small cost difference.
+    for (std::size_t i = 0; i < near; ++i)
+      if (continuing_from_ >= 0 && candidates[i].path.front() == continuing_from_) return candidates[i];
     // One step of lookahead: prefer the near-equal paths whose end continues naturally into the
     // next subsequence (a junction avoided there is worth more than the small cost difference).
     // Measured on 3 folds x 5 seeds: BEAT2 transitions 1.10 -> 1.03 per second, BC lift +0.041 ->
@@ -184,7 +192,17 @@ class Planner {
                       int max_attempts) {
     int round = 0;
     for (int attempt = 0; attempt < max_attempts; ++attempt) {
-      if (attempt == 0 && !first_starts.empty()) {
+      if (attempt == 0 && !first_starts.empty() && natural_) {
+        // The natural planner's first search starts both from where the output is (the previous
+        // path's successors: its continuation and the graph's transitions out of it) and from the
+        // best-ranked key nodes anywhere, each priced by its junction cost: a stretch that suits
+        // the speech better is worth a jump even where the graph has no edge to it.
+        ranked_starts(k, round++, request);
+        for (int s : first_starts)
+          if (std::find(request.start_nodes.begin(), request.start_nodes.end(), s) == request.start_nodes.end())
+            request.start_nodes.push_back(s);
+        starts_cost(request);
+      } else if (attempt == 0 && !first_starts.empty()) {
         request.start_nodes = first_starts;
         starts_cost(request);
       } else {
@@ -246,6 +264,7 @@ class Planner {
     // The frame the output would continue into; junction costs are measured from it.
     const int last = previous_path.empty() ? -1 : previous_path.back();
     reference_ = last < 0 ? -1 : (continues(last) ? last + 1 : last);
+    continuing_from_ = last >= 0 && continues(last) ? last + 1 : -1;
     seg.junction_from = reference_;
     seg.reuse_cost = 0.0;
     // Paper 4.2.2: after a clean result, the next search starts from the children of its last
@@ -326,6 +345,7 @@ class Planner {
   SpeechMatch speech_;
   ReuseTracker reuse_;
   int reference_ = -1;             // the current subsequence's junction reference frame
+  int continuing_from_ = -1;       // the natural successor of the previous path, or -1
   std::vector<double> key_costs_;  // estimated start cost of every key node
   std::vector<double> scratch_;
   std::vector<double> preference_;  // per block of the reference: the seed's preference

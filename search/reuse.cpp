@@ -28,10 +28,9 @@ void ReuseTracker::play(const std::vector<int>& path, int time) {
 }
 
 double ReuseTracker::path_cost(const std::vector<int>& path, int time) const {
-  if (path.empty()) return 0.0;
-  double sum = 0.0;
-  for (int f : path) sum += frame_cost(f, time);
-  return sum / static_cast<double>(path.size());
+  double worst = 0.0;
+  for (int f : path) worst = std::max(worst, frame_cost(f, time));
+  return worst;
 }
 
 void ReuseTracker::window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const {
@@ -39,9 +38,9 @@ void ReuseTracker::window_costs(int window, int time, const std::vector<int>& fr
   if (window < 1 || count_.empty()) return;
   const int last = static_cast<int>(count_.size()) - 1;
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    double sum = 0.0;
-    for (int i = 0; i < window; ++i) sum += frame_cost(std::min(frames[k] + i, last), time);
-    out[k] = sum / window;
+    double worst = 0.0;
+    for (int i = 0; i < window; ++i) worst = std::max(worst, frame_cost(std::min(frames[k] + i, last), time));
+    out[k] = worst;
   }
 }
 

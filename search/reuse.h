@@ -2,8 +2,10 @@
 // planner does not replay one attractive stretch while others lie unused.
 //
 // Each frame keeps a play count that decays with output time (half-life halflife frames); a
-// candidate pays the mean of its frames' counts. A stretch just played costs about 1 per play; a
-// stretch played a half-life ago half that; an overlapping stretch pays for the frames it shares.
+// candidate pays the count of its most played frame. A stretch just played costs about 1 per play,
+// one played a half-life ago half that, and so does a stretch that shares only some frames with it:
+// a short popular stretch (an onset-ended gesture) replayed inside ever different paths was what
+// the mean over a path's frames let through (4-6 plays of its frames in a minute).
 #pragma once
 
 #include <vector>
@@ -21,11 +23,11 @@ class ReuseTracker {
   // Frame f's decayed play count at output frame `time`.
   double frame_cost(int f, int time) const;
 
-  // Mean frame_cost over a path's frames.
+  // The largest frame_cost over a path's frames.
   double path_cost(const std::vector<int>& path, int time) const;
 
-  // For every frame s of `frames`: the mean frame_cost of s, s + 1, ..., s + window - 1 (clamped
-  // to the graph).
+  // For every frame s of `frames`: the largest frame_cost of s, s + 1, ..., s + window - 1
+  // (clamped to the graph).
   void window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const;
 
  private:

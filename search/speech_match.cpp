@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "audio/speech_features.h"
 #include "engine/core/error.h"
 
 namespace gmg {
@@ -24,7 +25,7 @@ SpeechMatch::SpeechMatch(const MotionGraph& g, const std::vector<float>& test, i
   pause_.resize(static_cast<std::size_t>(test_frames));
   for (int t = 0; t < test_frames; ++t) {
     const float loudness = test[static_cast<std::size_t>(t) * static_cast<std::size_t>(g.speech_dims)];
-    pause_[static_cast<std::size_t>(t)] = std::clamp((-loudness - 2.0f) / 1.5f, 0.0f, 1.0f);
+    pause_[static_cast<std::size_t>(t)] = audio::pause_weight(loudness);
   }
   run_last_.resize(static_cast<std::size_t>(g.frame_count()));
   int last = g.frame_count() - 1;
@@ -33,6 +34,29 @@ SpeechMatch::SpeechMatch(const MotionGraph& g, const std::vector<float>& test, i
     run_last_[static_cast<std::size_t>(f)] = last;
   }
   if (g.activity.size() == static_cast<std::size_t>(g.frame_count())) beat_costs();
+  // The scale: the mean feature distance of test and reference frames paired at random (4096
+  // pairs spread over both, deterministic), so 1 is what a stretch unrelated to the speech costs,
+  // whatever the recordings, and speech_weight compares with the junction cost (1 = a typical
+  // transition) on every graph alike.
+  constexpr int kPairs = 4096;
+  double sum = 0.0;
+  for (int i = 0; i < kPairs; ++i) {
+    const int t = static_cast<int>(static_cast<long long>(i) * (test_frames - 1) / (kPairs - 1));
+    const int f = static_cast<int>((static_cast<long long>(i) * 7919) % g.frame_count());
+    sum += feature_cost(t, f);
+  }
+  scale_ = sum > 0.0 ? kPairs / sum : 1.0;
+}
+
+double SpeechMatch::feature_cost(int t, int f) const {
+  const float* a = test_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(g_.speech_dims);
+  const float* b = g_.speech_at(f);
+  double sum = 0.0;
+  for (int d = 0; d < g_.speech_dims; ++d) {
+    const double x = static_cast<double>(a[d]) - static_cast<double>(b[d]);
+    sum += dim_weight(d) * x * x;
+  }
+  return sum;
 }
 
 void SpeechMatch::beat_costs() {
@@ -74,13 +98,7 @@ double SpeechMatch::end_cost(int f) const {
 double SpeechMatch::frame_cost(int t, int f) const {
   if (!active_) return 0.0;
   t = std::clamp(t, 0, test_frames_ - 1);
-  const float* a = test_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(g_.speech_dims);
-  const float* b = g_.speech_at(f);
-  double sum = 0.0;
-  for (int d = 0; d < g_.speech_dims; ++d) {
-    const double x = static_cast<double>(a[d]) - static_cast<double>(b[d]);
-    sum += dim_weight(d) * x * x;
-  }
+  double sum = scale_ * feature_cost(t, f);
   if (rest_weight_ > 0.0)
     sum += rest_weight_ * pause_[static_cast<std::size_t>(t)] * g_.activity[static_cast<std::size_t>(f)];
   return sum;

@@ -5,13 +5,13 @@
 // output: what is played is chosen by what was being said when it was captured.
 //
 // The cost of a pair (test frame t, graph frame f) is the weighted squared distance of their
-// speech features (audio/speech_features.h): loudness counts fully, onset activity half (it is
-// noisier: a syllable more or less changes it). Where the test speech pauses (loudness 20 dB or
-// more below its speaking level, fully from 35 dB), a frame also pays rest_weight times how much
-// the reference moves there (MotionGraph::activity): a speaker rests when silent, and stretches
-// of the reference that look like pauses by their sound need not be still (BEAT2's speaker moves
-// most between phrases). A path's cost is the mean over the test frames
-// it fills, each reading the path frame its time warp puts there.
+// speech features (audio/speech_features.h), loudness fully, onset activity half (it is noisier:
+// a syllable more or less changes it), over the mean of that distance between random pairs of the
+// two recordings (so 1 is the cost of a stretch unrelated to what is said). Where the test speech pauses (loudness 20
+// dB or more below its speaking level, fully from 35 dB), a frame also pays rest_weight times how much the reference
+// moves there (MotionGraph::activity): a speaker rests when silent, and stretches of the reference that look like
+// pauses by their sound need not be still (BEAT2's speaker moves most between phrases). A path's cost is the mean over
+// the test frames it fills, each reading the path frame its time warp puts there.
 #pragma once
 
 #include <vector>
@@ -49,12 +49,14 @@ class SpeechMatch {
 
  private:
   void beat_costs();
+  double feature_cost(int t, int f) const;  // unscaled
 
   const MotionGraph& g_;
   std::vector<float> test_;
   int test_frames_ = 0;
   bool active_ = false;
   double rest_weight_ = 0.0;
+  double scale_ = 1.0;           // 1 / the mean feature cost of random pairs
   std::vector<float> pause_;     // per test frame: how much it is a pause, 0..1
   std::vector<int> run_last_;    // per graph frame: the last frame of its capture run
   std::vector<float> end_cost_;  // per graph frame (end_cost)

@@ -45,10 +45,11 @@ struct BlendParams {
   // Inertialize only: feet the source has on the ground stay where they are (two-joint IK on
   // the legs, engine/assemble/foot_lock.h) instead of gliding while a transition decays.
   bool foot_lock = true;
-  // A released foot steps to where the leg puts it in this time: a quick human step (0.3-0.4 s);
+  // A released foot steps to where the leg puts it in this time, as a relaxed step takes (0.35 s
+  // added 0.09 to BEAT2's jerk ratio, 0.5 s 0.05);
   // decaying the offset like a transition's instead (0.2 s half-life) dragged the foot along the
   // floor, BEAT2 slide share 4 x the capture's.
-  double foot_step_s = 0.35;
+  double foot_step_s = 0.5;
 
   // Offset and Crossfade only: frames on each side of a junction. Retries restart the search at other key nodes, so
   // some junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at 30 fps) halves the

@@ -65,6 +65,7 @@ void add_ablation_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_analyse_command(CLI::App& app);
 // Registers the "batch" subcommand on app (with its own --config FILE and --set key=value options,
 // applied in that order, then --seed). Its callback runs batch_run with progress on std::cerr and
 // sets *exit_code: 0 every clip made or skipped, 1 some clip failed, 2 a setup error (printed as

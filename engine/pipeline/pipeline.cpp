@@ -194,7 +194,8 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
   r.motion = assemble_motion(g, r.plan, assembly_params(config));
 
-  r.report = reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton));
+  r.report =
+      reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());
   return r;
 }
 

@@ -20,7 +20,7 @@ nlohmann::ordered_json frame_ranges(const std::vector<int>& path) {
 }  // namespace
 
 nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& events, const Config& config,
-                                          double fps, double length_to_cm) {
+                                          double fps, double length_to_cm, bool speech_driven) {
   nlohmann::ordered_json rep;
   rep["frames"] = events.total_frames;
   rep["fps"] = fps;
@@ -31,7 +31,9 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
       {"onsets", events.onset_frames.size()}, {"keywords", events.keyword_frames.size()}, {"words", events.words}};
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   int accepted = 0;
+  double speech_sum = 0.0;
   for (const PlannedSegment& s : plan.segments) {
+    speech_sum += s.speech_cost * s.sub.length;
     nlohmann::ordered_json item;
     item["start_frame"] = s.sub.start;
     item["target_length"] = s.sub.length;
@@ -42,6 +44,8 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
     item["junction_gap_cm"] = s.junction_gap * length_to_cm;
     item["junction_cost"] = s.junction_cost;
     item["transitions_inside"] = s.transitions_inside;
+    item["speech_cost"] = s.speech_cost;
+    item["reuse_cost"] = s.reuse_cost;
     item["retries"] = s.retries;
     item["fallback"] = fallback_name(s.fallback);
     item["failure"] = s.failure;
@@ -60,6 +64,13 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
                      {"ignore_stops", plan.fallback_count(Fallback::IgnoreStops)},
                      {"hold_last_frame", plan.fallback_count(Fallback::HoldLastFrame)},
                      {"continue_motion", plan.fallback_count(Fallback::ContinueMotion)}}}};
+  const bool natural = config.search.planner == PlannerMode::Natural;
+  rep["totals"]["speech_driven"] = natural && speech_driven;
+  rep["totals"]["mean_speech_cost"] = events.total_frames > 0 ? speech_sum / events.total_frames : 0.0;
+  if (natural && !speech_driven)
+    rep["notes"].push_back(
+        "the graph holds no reference speech (made by an older gmg or from clips without it): planned without the "
+        "speech-driven costs; rebuild it with 'gmg build' for motion that follows the speech");
   return rep;
 }
 
