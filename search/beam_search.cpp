@@ -113,7 +113,11 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
       for (auto [out, end] = boost::out_edges(static_cast<std::size_t>(frame), g.graph); out != end; ++out) {
         const int child = static_cast<int>(boost::target(*out, g.graph));
         const bool natural = g.graph[*out].natural;
-        if (!natural && e.run < request.min_run) continue;
+        // No transition before the path has dwelt min_run frames, and none back into the stretch
+        // it is playing (a loop that replays what was just shown).
+        if (!natural && request.min_run > 0 &&
+            (e.run < request.min_run || (child <= frame && child > frame - e.run - 1)))
+          continue;
         tree.push_back({child, e.tree});
         Entry x;
         x.tree = static_cast<int>(tree.size()) - 1;

@@ -66,17 +66,17 @@ struct SearchParams {
   // Seeded variety (natural planner): the share of the reference's seconds each seed withholds
   // as places to jump to, so different seeds give clearly different motions (search/planner.cpp).
   // 0: every seed plans the same.
-  double variety = 0.3;
+  double variety = 0.4;
 
   // ---- speech-driven (natural planner; search/speech_match.h, search/reuse.h) ----
   // The knob that trades sync for smoothness: the weight of the speech distance (mean squared
   // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
   // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
   // without speech.
-  double speech_weight = 1.0;
+  double speech_weight = 1.5;
   // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
   // (1 = its typical motion) per frame.
-  double rest_weight = 1.0;
+  double rest_weight = 3.0;
   // Part of the speech cost: beat_weight x the end cost of a path (search/speech_match.h end_cost:
   // 0 when it ends on a kinematic beat of the reference, 1 far from one).
   double beat_weight = 0.5;

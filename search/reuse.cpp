@@ -10,7 +10,7 @@ ReuseTracker::ReuseTracker(int frames, double halflife)
       last_(count_.size(), 0),
       decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)) {}
 
-double ReuseTracker::frame_cost(int f, int time) const {
+double ReuseTracker::plays(int f, int time) const {
   const std::size_t k = static_cast<std::size_t>(f);
   if (count_[k] == 0.0) return 0.0;
   return count_[k] * std::exp(-decay_per_frame_ * std::max(0, time - last_[k]));
@@ -21,7 +21,7 @@ void ReuseTracker::play(const std::vector<int>& path, int time) {
   for (int f : path) {
     if (f == previous) continue;  // a held frame is one play
     const std::size_t k = static_cast<std::size_t>(f);
-    count_[k] = frame_cost(f, time) + 1.0;
+    count_[k] = plays(f, time) + 1.0;
     last_[k] = time;
     previous = f;
   }

@@ -2,7 +2,8 @@
 // planner does not replay one attractive stretch while others lie unused.
 //
 // Each frame keeps a play count that decays with output time (half-life halflife frames); a
-// candidate pays the count of its most played frame. A stretch just played costs about 1 per play,
+// frame costs the square of its count (a third play of a stretch costs four times a second) and a
+// candidate pays its most played frame. A stretch just played costs about 1 per play,
 // one played a half-life ago half that, and so does a stretch that shares only some frames with it:
 // a short popular stretch (an onset-ended gesture) replayed inside ever different paths was what
 // the mean over a path's frames let through (4-6 plays of its frames in a minute).
@@ -21,7 +22,13 @@ class ReuseTracker {
   void play(const std::vector<int>& path, int time);
 
   // Frame f's decayed play count at output frame `time`.
-  double frame_cost(int f, int time) const;
+  double plays(int f, int time) const;
+
+  // Its cost: plays squared.
+  double frame_cost(int f, int time) const {
+    const double p = plays(f, time);
+    return p * p;
+  }
 
   // The largest frame_cost over a path's frames.
   double path_cost(const std::vector<int>& path, int time) const;

@@ -6,12 +6,75 @@
 #include "engine/core/error.h"
 
 namespace gmg {
+namespace {
+
+// Inside one continuous run, pieces meet with a kink: each piece plays at its own warp rate, and
+// the step across the boundary is one whole source frame whatever the rates (the stop node is
+// the next piece's first frame). The source time through the pieces' first frames is made one
+// C1 curve instead: monotone cubic Hermite interpolation through those knots (Fritsch-Butland
+// slopes), so the playback speed changes gradually and every key frame still lands where the plan
+// put it. A run with a held frame (rate 0) is left as it is.
+void smooth_run(std::vector<SourceClock>& clock, const std::vector<int>& knots) {
+  const std::size_t n = knots.size();
+  if (n < 3) return;
+  std::vector<double> m(n - 1), d(n);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double h = knots[k + 1] - knots[k];
+    m[k] = (clock[static_cast<std::size_t>(knots[k + 1])].time - clock[static_cast<std::size_t>(knots[k])].time) / h;
+    if (!(m[k] > 0.0)) return;
+  }
+  d[0] = m[0];
+  d[n - 1] = m[n - 2];
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    const double h0 = knots[k] - knots[k - 1], h1 = knots[k + 1] - knots[k];
+    const double w1 = 2.0 * h1 + h0, w2 = h1 + 2.0 * h0;
+    d[k] = (w1 + w2) / (w1 / m[k - 1] + w2 / m[k]);
+  }
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const int a = knots[k], b = knots[k + 1];
+    const double h = b - a, t0 = clock[static_cast<std::size_t>(a)].time, t1 = clock[static_cast<std::size_t>(b)].time;
+    for (int i = a + 1; i < b; ++i) {
+      const double s = (i - a) / h, s2 = s * s, s3 = s2 * s;
+      SourceClock& c = clock[static_cast<std::size_t>(i)];
+      c.time = (2 * s3 - 3 * s2 + 1) * t0 + (s3 - 2 * s2 + s) * h * d[k] + (-2 * s3 + 3 * s2) * t1 +
+               (s3 - s2) * h * d[k + 1];
+      c.rate = (6 * s2 - 6 * s) / h * t0 + (3 * s2 - 4 * s + 1) * d[k] + (-6 * s2 + 6 * s) / h * t1 +
+               (3 * s2 - 2 * s) * d[k + 1];
+    }
+    clock[static_cast<std::size_t>(a)].rate = d[k];
+  }
+  clock[static_cast<std::size_t>(knots.back())].rate = d[n - 1];
+}
+
+// Every run that spans several pieces: its knots are the pieces' first frames and its last frame.
+void smooth_rates(std::vector<SourceClock>& clock, const std::vector<int>& piece_starts) {
+  std::vector<char> starts(clock.size(), 0);
+  for (int i : piece_starts) starts[static_cast<std::size_t>(i)] = 1;
+  for (std::size_t first = 0; first < clock.size();) {
+    std::size_t last = first;
+    bool held = clock[first].rate <= 0.0;
+    while (last + 1 < clock.size() && clock[last + 1].run == clock[first].run) {
+      ++last;
+      held = held || clock[last].rate <= 0.0;
+    }
+    std::vector<int> knots = {static_cast<int>(first)};
+    for (std::size_t i = first + 1; i <= last; ++i)
+      if (starts[i]) knots.push_back(static_cast<int>(i));
+    if (knots.back() != static_cast<int>(last)) knots.push_back(static_cast<int>(last));
+    if (!held) smooth_run(clock, knots);
+    first = last + 1;
+  }
+}
+
+}  // namespace
 
 std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues) {
   std::vector<SourceClock> out;
   int run = -1;
   int previous_frame = -2;  // last path frame of the previous piece
+  std::vector<int> piece_starts;
   for (const PathPiece& piece : pieces) {
+    piece_starts.push_back(static_cast<int>(out.size()));
     const std::vector<int>& p = piece.path;
     if (p.empty() || piece.length < 1) throw Error("source_timeline: empty path or length");
     for (int f : p)
@@ -47,6 +110,7 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
     }
     previous_frame = p.back();
   }
+  smooth_rates(out, piece_starts);
   return out;
 }
 
