@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "engine/assemble/inertialize.h"
+#include "engine/core/math.h"
 #include "engine/motion/rotation.h"
 
 namespace gmg {
@@ -64,8 +65,10 @@ glm::dquat rotation_between(const glm::dvec3& from, const glm::dvec3& to) {
 
 // Two-joint IK: moves the leg's ankle (chain's last three joints are hip, knee, ankle) to `target`
 // and gives the ankle the world orientation `ankle_world`. Bends the knee in its own plane to the
-// reach the target needs, then swings the leg about the hip.
-void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& target, const glm::dquat& ankle_world) {
+// reach the target needs, then swings the leg about the hip. The knee turns about `bend`
+// (update_bend): the plane the pose bends it in.
+void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& target, const glm::dquat& ankle_world,
+            const glm::dvec3& bend) {
   std::vector<glm::dquat> wr;
   std::vector<glm::dvec3> wp;
   chain_world(m, f, chain, wr, wp);
@@ -76,10 +79,12 @@ void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& t
   const double lat = std::clamp(glm::length(target - a), std::abs(lab - lcb) + 1e-6, lab + lcb - 1e-6);
   glm::dquat knee_turn(1.0, 0.0, 0.0, 0.0);
   const glm::dvec3 normal = glm::cross(a - b, c - b);
-  if (glm::length(normal) > 1e-9 * lab * lcb) {
-    const double now = std::acos(std::clamp(glm::dot(glm::normalize(a - b), glm::normalize(c - b)), -1.0, 1.0));
+  if (glm::length(bend) > 0.0) {
+    // The knee's angle on the side `bend` says (negative when the pose bends it the other way).
+    const double cosine = std::clamp(glm::dot(glm::normalize(a - b), glm::normalize(c - b)), -1.0, 1.0);
+    const double now = glm::dot(normal, bend) >= 0.0 ? std::acos(cosine) : 2.0 * kPi - std::acos(cosine);
     const double want = std::acos(std::clamp((lab * lab + lcb * lcb - lat * lat) / (2.0 * lab * lcb), -1.0, 1.0));
-    knee_turn = glm::angleAxis(want - now, glm::normalize(normal));
+    knee_turn = glm::angleAxis(want - now, bend);
   }
   const glm::dvec3 c1 = b + knee_turn * (c - b);
   const glm::dquat swing = rotation_between(c1 - a, target - a);
@@ -89,6 +94,25 @@ void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& t
   m.rotations[m.index(f, chain[n - 3])] = glm::normalize(glm::conjugate(parent_world) * hip_world);
   m.rotations[m.index(f, chain[n - 2])] = glm::normalize(glm::conjugate(hip_world) * knee_world);
   m.rotations[m.index(f, chain[n - 1])] = glm::normalize(glm::conjugate(knee_world) * ankle_world);
+}
+
+// The knee's bending axis, followed from frame to frame on the output's own pose: the normal of the
+// hip-knee-ankle plane while the knee is bent (more than 3 degrees), kept on the side it was. A
+// nearly straight leg has no plane of its own, its normal flips with noise, and IK about it swung
+// the knee 27 cm to the other side in one frame; an axis kept from long ago, on the other hand,
+// bent the IK'd knee in another plane than the pose's, and the knee jumped back when IK ended.
+void update_bend(const Motion& m, int f, const std::vector<int>& chain, glm::dvec3& bend) {
+  std::vector<glm::dquat> wr;
+  std::vector<glm::dvec3> wp;
+  chain_world(m, f, chain, wr, wp);
+  const std::size_t n = chain.size();
+  const glm::dvec3 a = wp[n - 3], b = wp[n - 2], c = wp[n - 1];
+  const glm::dvec3 normal = glm::cross(a - b, c - b);
+  const double lab = glm::length(b - a), lcb = glm::length(c - b);
+  if (lab < 1e-9 || lcb < 1e-9 || glm::length(normal) / (lab * lcb) <= 0.05) return;
+  glm::dvec3 axis = normal / glm::length(normal);
+  if (glm::length(bend) > 0.0 && glm::dot(axis, bend) < 0.0) axis = -axis;
+  bend = axis;
 }
 
 }  // namespace
@@ -163,14 +187,16 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
     glm::dquat anchor_rot(1.0, 0.0, 0.0, 0.0), src_previous_rot = anchor_rot;
     // A step after a release: from where the foot was (step_pos, step_rot) to where the output's
     // own leg puts it, over step_frames frames; step_at counts them (step_frames: no step).
-    glm::dvec3 step_pos(0.0), shown(0.0);
+    glm::dvec3 step_pos(0.0), shown(0.0), bend(0.0), foot_before(0.0);
     glm::dquat step_rot = anchor_rot, shown_rot = anchor_rot;
     double step_height = 0.0;
     int step_at = step_frames;
     for (int i = 0; i < out.frame_count; ++i) {
       const SourceClock& c = clock[static_cast<std::size_t>(i)];
       chain_world(out, i, chain, wr, wp);
+      update_bend(out, i, chain, bend);
       const glm::dvec3 hip = wp[wp.size() - 3], foot = wp.back();
+      if (i == 0) foot_before = foot;
       const glm::dquat foot_rot = wr.back();
       glm::dvec3 src;
       glm::dquat src_rot;
@@ -201,30 +227,39 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
             (1.0 - w) * step_pos + w * foot + glm::dvec3(0.0, step_height * 16.0 * s * s * (1 - s) * (1 - s), 0.0);
         free_rot = slerp_shortest(step_rot, foot_rot, w);
       }
-      if (contact && !locked) {
+      // A foot on its way in a step is planted once it is down again (within 1 % of a leg of the
+      // leg's own foot height): planted mid-arc it would stay in the air.
+      const bool landed = step_at >= step_frames || free_pos.y - foot.y < 0.01 * leg.length;
+      if (contact && !locked && landed) {
         locked = true;
         anchor = free_pos;  // where the foot is shown now
         anchor_rot = free_rot;
         step_at = step_frames;
       }
-      // An anchor the leg can no longer reach (the body moved on) is released too. Standing legs
-      // are nearly straight (99.9 % of their length on the test skeleton), so only a target
-      // beyond full reach counts.
-      if (locked && ((!contact && !held) || glm::length(anchor - hip) > leg.length)) {
+      // An anchor the leg can hardly reach any more (the body moved on) is released too: once it
+      // asks the leg to stretch more than 3 % of its length beyond the capture's own pose here (or
+      // beyond its full length), before the knee locks straight and the foot is dragged.
+      const double reach = std::min(leg.length, glm::length(foot - hip) + 0.03 * leg.length);
+      if (locked && ((!contact && !held) || glm::length(anchor - hip) > reach)) {
         locked = false;
         held = false;
         // The foot steps from where it was shown to where the leg now puts it, as high as half the
         // way it has to go (at most kStepLift leg lengths).
         step_pos = shown;
         step_rot = shown_rot;
-        step_height = std::min(kStepLift * leg.length, 0.5 * std::hypot(foot.x - shown.x, foot.z - shown.z));
+        // As high as the way is long (the way to the leg's foot now, and as far again as that
+        // foot moves in a step's time), up to kStepLift leg lengths at a fifth of a leg's way.
+        const double way = std::hypot(foot.x - shown.x, foot.z - shown.z) +
+                           std::hypot(foot.x - foot_before.x, foot.z - foot_before.z) * step_frames;
+        step_height = kStepLift * leg.length * std::min(1.0, way / (0.2 * leg.length));
         step_at = 0;
         free_pos = shown;
         free_rot = shown_rot;
       }
+      foot_before = foot;
       shown = locked ? anchor : free_pos;
       shown_rot = locked ? anchor_rot : free_rot;
-      if (locked || step_at < step_frames) leg_ik(out, i, chain, shown, shown_rot);
+      if (locked || step_at < step_frames) leg_ik(out, i, chain, shown, shown_rot, bend);
     }
   }
 }

@@ -153,5 +153,39 @@ TEST(Transitions, PlantedFeetStayWhereTheyAre) {
   EXPECT_GT((q.block<1, 3>(99, 3 * left) - q.block<1, 3>(0, 3 * left)).norm(), 5.0);
 }
 
+// A foot the leg can no longer reach (the second stance stands 40 cm to the side and the root is
+// free to follow it, gliding there over a second) is not dragged along the floor: it steps, off the
+// floor and down again (touching down on a foot that moves with the body costs a frame or two of
+// each step), and ends where the new stance has it.
+TEST(Transitions, AFootThatMustMoveStepsInsteadOfSliding) {
+  Motion src = standing(200);
+  for (int f = 100; f < 200; ++f) src.translations[src.index(f, 0)] = glm::dvec3(40, 90, 0);
+  const std::vector<Leg> legs = find_legs(src.skeleton);
+  BlendParams params = inertialize_only();
+  params.foot_lock = true;
+  params.root = RootMode::Free;
+  const std::vector<PathPiece> pieces = {run(0, 50), run(150, 50)};
+  const Motion out = assemble_inertialized(src, continues_except(200, {99, 199}), pieces, params);
+  const Eigen::MatrixXd p = motion_forward_kinematics(out);
+  const Eigen::MatrixXd source = motion_forward_kinematics(src);
+  for (const Leg& leg : legs) {
+    const Eigen::Index a = 3 * leg.ankle;
+    double highest = 0.0;
+    int sliding = 0;
+    for (int f = 1; f < 100; ++f) {
+      highest = std::max(highest, p(f, a + 1));
+      const double horizontal = std::hypot(p(f, a) - p(f - 1, a), p(f, a + 2) - p(f - 1, a + 2)) * 30.0;
+      sliding += p(f, a + 1) < 1.0 && horizontal > 10.0;
+    }
+    EXPECT_LE(sliding, 4) << "frames with the foot on the floor moving faster than 10 cm/s";
+    EXPECT_GT(highest, 5.0) << "the foot is lifted on its way";
+    // It is planted again on the floor, most of the 40 cm over (where it touched down: the leg
+    // reaches the rest of the way).
+    EXPECT_NEAR(p(99, a + 1), 0.0, 1.0);
+    EXPECT_LT(std::abs(p(99, a) - source(150, a)), 10.0);
+    EXPECT_NEAR(p(99, a + 2), source(150, a + 2), 1.0);
+  }
+}
+
 }  // namespace
 }  // namespace gmg
