@@ -16,6 +16,8 @@ std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); 
 Checksum::Checksum() : lane_{kP1 + kP2, kP2, 0, 0 - kP1} {}
 
 void Checksum::add(const void* data, std::size_t size) {
+  // An empty vector's data() may be null, and memcpy from null is undefined even for 0 bytes.
+  if (size == 0) return;
   const auto* p = static_cast<const unsigned char*>(data);
   total_ += size;
   if (fill_ > 0) {
