@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "engine/assemble/inertialize.h"
-#include "engine/core/math.h"
 #include "engine/motion/rotation.h"
 
 namespace gmg {
@@ -65,8 +64,8 @@ glm::dquat rotation_between(const glm::dvec3& from, const glm::dvec3& to) {
 
 // Two-joint IK: moves the leg's ankle (chain's last three joints are hip, knee, ankle) to `target`
 // and gives the ankle the world orientation `ankle_world`. Bends the knee in its own plane to the
-// reach the target needs, then swings the leg about the hip. The knee turns about `bend`
-// (update_bend): the plane the pose bends it in.
+// reach the target needs, then swings the leg about the hip. The knee turns about `bend`, its
+// hinge (knee_hinge).
 void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& target, const glm::dquat& ankle_world,
             const glm::dvec3& bend) {
   std::vector<glm::dquat> wr;
@@ -79,12 +78,12 @@ void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& t
   const double lat = std::clamp(glm::length(target - a), std::abs(lab - lcb) + 1e-6, lab + lcb - 1e-6);
   glm::dquat knee_turn(1.0, 0.0, 0.0, 0.0);
   const glm::dvec3 normal = glm::cross(a - b, c - b);
-  if (glm::length(bend) > 0.0) {
-    // The knee's angle on the side `bend` says (negative when the pose bends it the other way).
-    const double cosine = std::clamp(glm::dot(glm::normalize(a - b), glm::normalize(c - b)), -1.0, 1.0);
-    const double now = glm::dot(normal, bend) >= 0.0 ? std::acos(cosine) : 2.0 * kPi - std::acos(cosine);
+  const glm::dvec3 axis = bend;
+  if (glm::length(axis) > 0.0) {
+    const double inner = std::acos(std::clamp(glm::dot(glm::normalize(a - b), glm::normalize(c - b)), -1.0, 1.0));
+    const double now = glm::dot(normal, axis) >= 0.0 ? inner : 2.0 * 3.14159265358979323846 - inner;
     const double want = std::acos(std::clamp((lab * lab + lcb * lcb - lat * lat) / (2.0 * lab * lcb), -1.0, 1.0));
-    knee_turn = glm::angleAxis(want - now, bend);
+    knee_turn = glm::angleAxis(want - now, axis);
   }
   const glm::dvec3 c1 = b + knee_turn * (c - b);
   const glm::dquat swing = rotation_between(c1 - a, target - a);
@@ -96,23 +95,18 @@ void leg_ik(Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& t
   m.rotations[m.index(f, chain[n - 1])] = glm::normalize(glm::conjugate(knee_world) * ankle_world);
 }
 
-// The knee's bending axis, followed from frame to frame on the output's own pose: the normal of the
-// hip-knee-ankle plane while the knee is bent (more than 3 degrees), kept on the side it was. A
-// nearly straight leg has no plane of its own, its normal flips with noise, and IK about it swung
-// the knee 27 cm to the other side in one frame; an axis kept from long ago, on the other hand,
-// bent the IK'd knee in another plane than the pose's, and the knee jumped back when IK ended.
-void update_bend(const Motion& m, int f, const std::vector<int>& chain, glm::dvec3& bend) {
+// The knee's hinge in world space at frame f: the hinge axis learnt from the capture (in the thigh's
+// frame, FootTrack::hinge) turned by the output's thigh. Taken from the pose's own knee plane
+// instead, a nearly straight leg has no plane to give: its normal swings and flips with noise, and
+// IK about it swung the knee 17-42 cm in one frame. Without a learnt hinge, the pose's plane.
+glm::dvec3 knee_hinge(const Motion& m, int f, const std::vector<int>& chain, const glm::dvec3& hinge) {
   std::vector<glm::dquat> wr;
   std::vector<glm::dvec3> wp;
   chain_world(m, f, chain, wr, wp);
   const std::size_t n = chain.size();
-  const glm::dvec3 a = wp[n - 3], b = wp[n - 2], c = wp[n - 1];
-  const glm::dvec3 normal = glm::cross(a - b, c - b);
-  const double lab = glm::length(b - a), lcb = glm::length(c - b);
-  if (lab < 1e-9 || lcb < 1e-9 || glm::length(normal) / (lab * lcb) <= 0.05) return;
-  glm::dvec3 axis = normal / glm::length(normal);
-  if (glm::length(bend) > 0.0 && glm::dot(axis, bend) < 0.0) axis = -axis;
-  bend = axis;
+  if (glm::length(hinge) > 0.0) return glm::normalize(wr[n - 3] * hinge);
+  const glm::dvec3 normal = glm::cross(wp[n - 3] - wp[n - 2], wp[n - 1] - wp[n - 2]);
+  return glm::length(normal) > 1e-12 ? glm::normalize(normal) : glm::dvec3(0.0);
 }
 
 }  // namespace
@@ -127,11 +121,20 @@ std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>
     FootTrack track;
     track.pos.resize(static_cast<std::size_t>(source.frame_count));
     track.rot.resize(static_cast<std::size_t>(source.frame_count));
+    glm::dvec3 hinge(0.0);
+    const std::size_t n = chain.size();
     for (int f = 0; f < source.frame_count; ++f) {
       chain_world(source, f, chain, wr, wp);
       track.pos[static_cast<std::size_t>(f)] = wp.back();
       track.rot[static_cast<std::size_t>(f)] = wr.back();
+      // The knee plane's normal in the thigh's frame, where the knee is clearly bent (17 degrees
+      // or more): a hinge, nearly the same axis in every such frame.
+      const glm::dvec3 normal = glm::cross(wp[n - 3] - wp[n - 2], wp[n - 1] - wp[n - 2]);
+      const double l = glm::length(wp[n - 3] - wp[n - 2]) * glm::length(wp[n - 1] - wp[n - 2]);
+      if (l > 0.0 && glm::length(normal) / l >= 0.3)
+        hinge += glm::conjugate(wr[n - 3]) * (normal / glm::length(normal));
     }
+    if (glm::length(hinge) > 0.0) track.hinge = glm::normalize(hinge);
     const std::vector<glm::dvec3>& p = track.pos;
     std::vector<char> contact(static_cast<std::size_t>(source.frame_count), 0);
     std::vector<char> low(contact.size(), 0);
@@ -187,14 +190,16 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
     glm::dquat anchor_rot(1.0, 0.0, 0.0, 0.0), src_previous_rot = anchor_rot;
     // A step after a release: from where the foot was (step_pos, step_rot) to where the output's
     // own leg puts it, over step_frames frames; step_at counts them (step_frames: no step).
-    glm::dvec3 step_pos(0.0), shown(0.0), bend(0.0), foot_before(0.0);
+    glm::dvec3 step_pos(0.0), shown(0.0), foot_before(0.0);
     glm::dquat step_rot = anchor_rot, shown_rot = anchor_rot;
     double step_height = 0.0;
     int step_at = step_frames;
+    double settle_from = 0.0;  // height a foot planted mid-step still had, let down over settle_frames
+    int settle_frames = 1, settle_at = 1;
     for (int i = 0; i < out.frame_count; ++i) {
       const SourceClock& c = clock[static_cast<std::size_t>(i)];
       chain_world(out, i, chain, wr, wp);
-      update_bend(out, i, chain, bend);
+      const glm::dvec3 bend = knee_hinge(out, i, chain, track.hinge);
       const glm::dvec3 hip = wp[wp.size() - 3], foot = wp.back();
       if (i == 0) foot_before = foot;
       const glm::dquat foot_rot = wr.back();
@@ -227,14 +232,25 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
             (1.0 - w) * step_pos + w * foot + glm::dvec3(0.0, step_height * 16.0 * s * s * (1 - s) * (1 - s), 0.0);
         free_rot = slerp_shortest(step_rot, foot_rot, w);
       }
-      // A foot on its way in a step is planted once it is down again (within 1 % of a leg of the
-      // leg's own foot height): planted mid-arc it would stay in the air.
-      const bool landed = step_at >= step_frames || free_pos.y - foot.y < 0.01 * leg.length;
-      if (contact && !locked && landed) {
+      // A foot on its way in a step is planted where it is once the step is past its middle and the
+      // source has the foot on the ground (waiting for the step to end left it sliding along the
+      // floor: BEAT2 slide share 4 % against 3 %; earlier, it would be planted again where it just
+      // left), and whatever height it still has it lets down over what is left of the step
+      // (planted mid-arc it would stay in the air).
+      if (contact && !locked && 2 * step_at >= step_frames) {
         locked = true;
         anchor = free_pos;  // where the foot is shown now
         anchor_rot = free_rot;
+        settle_from = step_at < step_frames ? std::max(0.0, free_pos.y - foot.y) : 0.0;
+        settle_frames = std::max(1, step_frames - step_at);
+        settle_at = 0;
+        anchor.y -= settle_from;
         step_at = step_frames;
+      }
+      double settle = 0.0;
+      if (locked && settle_at < settle_frames) {
+        const double s = static_cast<double>(++settle_at) / settle_frames;
+        settle = settle_from * (1.0 - s * s * s * (s * (6.0 * s - 15.0) + 10.0));
       }
       // An anchor the leg can hardly reach any more (the body moved on) is released too: once it
       // asks the leg to stretch more than 3 % of its length beyond the capture's own pose here (or
@@ -257,7 +273,7 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
         free_rot = shown_rot;
       }
       foot_before = foot;
-      shown = locked ? anchor : free_pos;
+      shown = locked ? anchor + glm::dvec3(0.0, settle, 0.0) : free_pos;
       shown_rot = locked ? anchor_rot : free_rot;
       if (locked || step_at < step_frames) leg_ik(out, i, chain, shown, shown_rot, bend);
     }

@@ -26,6 +26,9 @@ struct FootTrack {
   std::vector<char> low;        // near the ground: the height half of the contact test alone
   std::vector<glm::dvec3> pos;  // world position
   std::vector<glm::dquat> rot;  // world orientation
+  // The knee's hinge axis in the thigh's frame, learnt from the frames where the capture bends the
+  // knee clearly; 0 when it never does (the IK then bends in the pose's own plane).
+  glm::dvec3 hinge{0.0};
 };
 
 // Per leg, the source's ankle track. A foot is in contact when its world speed is below 0.15 leg

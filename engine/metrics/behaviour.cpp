@@ -24,7 +24,7 @@ double foot_slide_share(const Eigen::MatrixXd& pos, double fps, const std::vecto
     for (std::size_t l = 0; l < legs.size() && !slides; ++l) {
       const Eigen::Index c = 3 * legs[l].ankle;
       const bool low = pos(t, c + 1) <= floor[l] + params.height_cm;
-      const double speed = (pos.block<1, 3>(t, c) - pos.block<1, 3>(t - 1, c)).norm() * fps;
+      const double speed = std::hypot(pos(t, c) - pos(t - 1, c), pos(t, c + 2) - pos(t - 1, c + 2)) * fps;
       slides = low && speed > params.speed_cm_s;
     }
     sliding += slides;

@@ -13,8 +13,9 @@
 
 namespace gmg {
 
-// Foot sliding: the share of frames t >= 1 in which some ankle near the floor moves faster than
-// speed_cm_s (|p(t) - p(t-1)| * fps, world space). Near the floor: within height_cm of that ankle's
+// Foot sliding: the share of frames t >= 1 in which some ankle near the floor moves along it faster
+// than speed_cm_s (horizontal speed, world space: a foot lifting off or setting down moves
+// vertically near the floor without sliding). Near the floor: within height_cm of that ankle's
 // floor, its 1st-percentile height over the motion. A planted foot of the capture moves at a few
 // cm/s (capture noise); a foot carried along by a transition or a gliding root moves faster. 0
 // without legs or with fewer than 2 frames.

@@ -108,7 +108,7 @@ TEST(Cli, EveryHelpShowsTheDefaultsAndTheExitCodes) {
       {"evaluate", "--hist-width FLOAT=1"},
       {"batch", "--progress TEXT:{auto,lines,none}=auto"},
       {"batch", "(default: the config's seed, 20231009)"},
-      {"ablation", "--folds INT=3"},
+      {"ablation", "--folds INT=6"},
       {"synth", "--stem TEXT=synth"},
       {"config", "(default: the config's seed, 20231009)"},
       {"render", "--size TEXT=640x480"},
