@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <string>
 
@@ -14,6 +16,42 @@ namespace {
 
 // 192 kHz against a coprime target rate: the WAV reader's highest rate.
 constexpr long long kMaxReducedRate = 192000;
+
+// The filter scipy designs, firwin(2 * half_len + 1, 1 / max_rate, ('kaiser', 5.0)) times up, with
+// the taps of one phase (k = p, p + up, ...) stored together and zero padded to the longest phase.
+std::vector<double> make_polyphase_filter(long long up, long long down) {
+  const long long max_rate = std::max(up, down);
+  const long long half_len = 10 * max_rate;
+  const long long taps = 2 * half_len + 1;
+  std::vector<double> h = firwin_kaiser(static_cast<int>(taps), 1.0 / static_cast<double>(max_rate), 5.0);
+  for (double& v : h) v *= static_cast<double>(up);
+  const long long phase_len = (taps + up - 1) / up;
+  std::vector<double> phases(static_cast<std::size_t>(up * phase_len), 0.0);
+  for (long long k = 0; k < taps; ++k)
+    phases[static_cast<std::size_t>((k % up) * phase_len + k / up)] = h[static_cast<std::size_t>(k)];
+  return phases;
+}
+
+// Designing the filter costs more than resampling a short clip (a Bessel function per tap), and a
+// run resamples every clip between the same two rates: the last few designs are kept.
+std::shared_ptr<const std::vector<double>> polyphase_filter(long long up, long long down) {
+  struct Entry {
+    long long up, down;
+    std::shared_ptr<const std::vector<double>> phases;
+  };
+  static std::mutex mutex;
+  static std::vector<Entry> cache;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const Entry& e : cache)
+      if (e.up == up && e.down == down) return e.phases;
+  }
+  auto phases = std::make_shared<const std::vector<double>>(make_polyphase_filter(up, down));
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() >= 4) cache.erase(cache.begin());
+  cache.push_back({up, down, phases});
+  return phases;
+}
 
 }  // namespace
 
@@ -71,34 +109,56 @@ std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int
                 std::to_string(20 * kMaxReducedRate + 1) + ")");
   const long long half_len = 10 * max_rate;
   const long long taps = 2 * half_len + 1;
-  std::vector<double> h = firwin_kaiser(static_cast<int>(taps), 1.0 / static_cast<double>(max_rate), 5.0);
-  for (double& v : h) v *= static_cast<double>(up);
+  const long long phase_len = (taps + up - 1) / up;
+  const std::shared_ptr<const std::vector<double>> filter = polyphase_filter(up, down);
+  const std::vector<double>& phases = *filter;
 
-  // scipy's alignment: it pre-pads h with n_pre_pad = down - half_len % down
-  // zeros and drops n_pre_remove = (half_len + n_pre_pad) / down outputs of
-  // upfirdn; since half_len + n_pre_pad is a multiple of down, that works
-  // out to exactly
-  //   y[n] = sum_k h[k] * xu[n * down + half_len - k]
-  //        = sum_k h[k] * xu[n * down + k - half_len]      (h symmetric)
-  // where xu is x with up - 1 zeros after every sample (zero outside x):
-  // output sample n sits at time n / to_rate, the filter centred on it.
-  // Only every up-th tap meets a nonzero xu, so each output costs
-  // taps / up multiplications (the polyphase form).
   std::vector<float> y(static_cast<std::size_t>(n_out));
-  for (long long n = 0; n < n_out; ++n) {
+  // Output n's first tap: phase p = k0 % up, taps from t0 = k0 / up on, reading x from i0.
+  const auto first_tap = [&](long long n, long long& p, long long& t0, long long& i0) {
     const long long base = n * down - half_len;  // xu index of tap k = 0
-    // First tap k with (base + k) divisible by up and base + k >= 0.
-    long long k0 = ((-base) % up + up) % up;
-    long long i0 = (base + k0) / up;  // x index of tap k0 (may be negative)
+    long long k0 = ((-base) % up + up) % up;     // first tap with (base + k) divisible by up
+    i0 = (base + k0) / up;                       // x index of tap k0 (may be negative)
     if (i0 < 0) {
       k0 += (-i0) * up;
       i0 = 0;
     }
+    p = k0 % up;
+    t0 = k0 / up;
+  };
+  const auto one = [&](long long n) {
+    long long p = 0, t0 = 0, i0 = 0;
+    first_tap(n, p, t0, i0);
+    const double* hp = &phases[static_cast<std::size_t>(p * phase_len)];
     double acc = 0.0;
-    for (long long k = k0, i = i0; k < taps && i < n_in; k += up, ++i) {
-      acc += h[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(i)];
-    }
+    for (long long t = t0, i = i0; p + t * up < taps && i < n_in; ++t, ++i) acc += hp[t] * x[static_cast<std::size_t>(i)];
     y[static_cast<std::size_t>(n)] = static_cast<float>(acc);
+  };
+  constexpr int kLanes = 8;
+  long long n = 0;
+  while (n < n_out) {
+    // A block of outputs whose taps all start at t0 = 0 and lie inside x takes the fast path.
+    long long p[kLanes], t0[kLanes], i0[kLanes];
+    bool interior = n + kLanes <= n_out;
+    for (int l = 0; l < kLanes && interior; ++l) {
+      first_tap(n + l, p[l], t0[l], i0[l]);
+      interior = t0[l] == 0 && i0[l] + phase_len <= n_in;
+    }
+    if (!interior) {
+      one(n++);
+      continue;
+    }
+    double acc[kLanes] = {};
+    const double* hp[kLanes];
+    const float* xp[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      hp[l] = &phases[static_cast<std::size_t>(p[l] * phase_len)];
+      xp[l] = &x[static_cast<std::size_t>(i0[l])];
+    }
+    for (long long t = 0; t < phase_len; ++t)
+      for (int l = 0; l < kLanes; ++l) acc[l] += hp[l][t] * static_cast<double>(xp[l][t]);
+    for (int l = 0; l < kLanes; ++l) y[static_cast<std::size_t>(n + l)] = static_cast<float>(acc[l]);
+    n += kLanes;
   }
   return y;
 }
