@@ -4,10 +4,12 @@
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload)
+//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity, key poses
+//            (write_payload)
 //   u64      checksum of the payload (engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The four largest (the
-// motion's rotations and translations, the speech features and the motion activity) each start
+// The large parts are flat arrays in the layout they have in memory. The five largest (the
+// motion's rotations and translations, the speech features, the motion activity and the key
+// nodes' junction poses) each start
 // on a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads them in
 // place from the file's mapping (engine/core/files.h MappedFile): a load costs one checksum and
 // validation pass, the pages of the file are shared by every process that reads it, and none of
@@ -28,13 +30,14 @@
 #include "engine/core/strings.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
+#include "graph/key_poses.h"
 
 namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
 constexpr std::uint32_t kVersion = 4;  // 3: the reference speech features; 4: aligned arrays read in place
-constexpr std::size_t kAlign = 4096;  // the sections read in place start at multiples of it
+constexpr std::size_t kAlign = 4096;   // the sections read in place start at multiples of it
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -312,6 +315,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
+  w.aligned(g.key_poses.data(), g.key_poses.size());
 }
 
 // The speech features: none, or frames x dims finite values.
@@ -337,6 +341,21 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (!valid) r.fail("a motion activity is negative or not finite");
   g.speech = Samples<float>::view(speech, speech_n, src.owner);
   g.activity = Samples<float>::view(activity, activity_n, src.owner);
+}
+
+// The key nodes' junction poses: none, or keys x junction_pose_dims finite values.
+void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
+  const auto [poses, n] = r.aligned<double>();
+  std::size_t keys = 0;
+  for (int f = 0; f < g.frame_count(); ++f) keys += g.is_key(f) ? 1 : 0;
+  if (n != 0 && n != keys * static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)))
+    r.fail("key poses disagree with key nodes x pose values");
+  bool finite = true;
+  in_chunks(src, poses, n, [&](const double* p, std::size_t, std::size_t m) {
+    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
+  });
+  if (!finite) r.fail("a key pose value is not finite");
+  g.key_poses = Samples<double>::view(poses, n, src.owner);
 }
 
 std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
@@ -454,7 +473,8 @@ MotionGraph read_payload(Reader& r, const Source& src) {
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count)));
   check_natural_edges(r, g.graph);
   read_speech(r, src, g);
-  if (!r.done()) r.fail("trailing bytes after the speech features");
+  read_key_poses(r, src, g);
+  if (!r.done()) r.fail("trailing bytes after the key poses");
   return g;
 }
 

@@ -73,6 +73,10 @@ struct MotionGraph {
   // graph's median of it (1 = the speaker's typical motion, near 0 = at rest); empty for a graph
   // without speech features. The speech-driven planner prefers rest where the new speech pauses.
   Samples<float> activity;
+  // Every key frame's junction pose (graph/key_poses.h), key after key in key_frames() order:
+  // keys x junction_pose_dims values; empty for a graph made without them (the planner then
+  // computes them from the motion).
+  Samples<double> key_poses;
   // The file a loaded graph is served from; null for a graph built in memory.
   std::shared_ptr<const MappedFile> source;
 

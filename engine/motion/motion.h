@@ -52,8 +52,8 @@ bool skeletons_match(const Skeleton& a, const Skeleton& b, std::string* why = nu
 
 struct Motion {
   Skeleton skeleton;
-  double fps = 30.0;                     // frames per second (> 0)
-  int frame_count = 0;                   // >= 0
+  double fps = 30.0;    // frames per second (> 0)
+  int frame_count = 0;  // >= 0
   // The samples are owned, or read in place from a graph file (engine/motion/samples.h).
   Samples<glm::dquat> rotations;     // local joint rotations, unit, frame_count * joint_count
   Samples<glm::dvec3> translations;  // local joint translations, frame_count * joint_count:
