@@ -538,6 +538,7 @@ MotionGraph graph_load(const std::string& path) {
   auto file = std::make_shared<const MappedFile>(path);
   Source src{file->data(), file->size(), file.get(), file};
   MotionGraph g = parse_graph(src, path);
+  file->expect_random_reads();  // a reenactment reads the key poses and its paths' frames
   g.source = std::move(file);
   g.check_unchanged();
   return g;

@@ -449,6 +449,10 @@ void MappedFile::check_unchanged() const {
   throw Error(path_ + ": changed while in use (it was truncated or written to; read it again when it is complete)");
 }
 
+void MappedFile::expect_random_reads() const {
+  if (data_) ::madvise(const_cast<char*>(data_), size_, MADV_RANDOM);
+}
+
 void MappedFile::release(std::size_t offset, std::size_t size) const {
   if (!data_ || offset >= size_) return;
   const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
