@@ -59,6 +59,94 @@ std::shared_ptr<const std::vector<double>> polyphase_filter(long long up, long l
   return phases;
 }
 
+// The polyphase form of the resampler for one signal and filter (scipy's alignment, see
+// resample_poly): output n is sum_k h[k] * xu[n * down + k - half_len].
+struct Polyphase {
+  static constexpr int kLanes = 8;
+  const std::vector<float>& x;
+  const std::vector<double>& phases;  // polyphase_filter(up, down)
+  long long up, down;
+  long long half_len = 10 * std::max(up, down);
+  long long taps = 2 * half_len + 1;
+  long long phase_len = (taps + up - 1) / up;
+  long long n_in = static_cast<long long>(x.size());
+  std::vector<float> xt{};  // a tile's stretch of x, transposed
+
+  // Output n's first tap: phase p = k0 % up, taps from t0 = k0 / up on, reading x from i0.
+  void first_tap(long long n, long long& p, long long& t0, long long& i0) const {
+    const long long base = n * down - half_len;  // xu index of tap k = 0
+    long long k0 = ((-base) % up + up) % up;     // first tap with (base + k) divisible by up
+    i0 = (base + k0) / up;                       // x index of tap k0 (may be negative)
+    if (i0 < 0) {
+      k0 += (-i0) * up;
+      i0 = 0;
+    }
+    p = k0 % up;
+    t0 = k0 / up;
+  }
+
+  // Output n, its products summed in ascending tap order.
+  float one(long long n) const {
+    long long p = 0, t0 = 0, i0 = 0;
+    first_tap(n, p, t0, i0);
+    const double* hp = &phases[static_cast<std::size_t>(p * phase_len)];
+    double acc = 0.0;
+    for (long long t = t0, i = i0; p + t * up < taps && i < n_in; ++t, ++i)
+      acc += hp[t] * x[static_cast<std::size_t>(i)];
+    return static_cast<float>(acc);
+  }
+
+  // Whether every tap of outputs n .. n + 8 up - 1 lies inside x.
+  bool tile_inside(long long n) const {
+    long long p0 = 0, t0 = 0, x0 = 0, p1 = 0, t1 = 0, i1 = 0;
+    first_tap(n, p0, t0, x0);
+    first_tap(n + kLanes * up - 1, p1, t1, i1);
+    return t0 == 0 && i1 + phase_len <= n_in;
+  }
+
+  // Outputs n + l * up (l = 0..7) share a phase and read x at i0 + l * down: a tile of 8 * up
+  // outputs whose taps all lie inside x is computed phase by phase, eight outputs at once, from a
+  // transposed copy of its stretch of x (xt[j][l] = x[x0 + l * down + j]), so the eight products
+  // of a tap are one vector operation. Each output still sums its products in ascending tap order,
+  // from 0.0, as one() does (a padding tap adds 0 * x, which leaves a nonzero sum as it is and can
+  // only turn a sum of -0 into +0).
+  void tile(long long n, std::vector<float>& y) {
+    long long pj = 0, tj = 0, ij = 0, x0 = 0;
+    first_tap(n + up - 1, pj, tj, ij);
+    const long long last = ij;
+    first_tap(n, pj, tj, x0);
+    const long long width = last - x0 + phase_len;  // the stretch each lane reads
+    xt.resize(static_cast<std::size_t>(width * kLanes));
+    for (int l = 0; l < kLanes; ++l) {
+      const float* src = &x[static_cast<std::size_t>(x0 + l * down)];
+      for (long long j = 0; j < width; ++j) xt[static_cast<std::size_t>(j * kLanes + l)] = src[j];
+    }
+    // Output n + j's phase and first x index, stepped from output n's (one output further moves
+    // the filter by `down` input-rate samples) instead of divided out for each.
+    const long long step_phase = down % up, step_x = down / up;
+    ij = x0;
+    for (long long j = 0; j < up; ++j) {
+      if (j > 0) {
+        pj -= step_phase;
+        ij += step_x;
+        if (pj < 0) {
+          pj += up;
+          ++ij;
+        }
+      }
+      const double* hp = &phases[static_cast<std::size_t>(pj * phase_len)];
+      const float* xp = &xt[static_cast<std::size_t>((ij - x0) * kLanes)];
+      Lanes acc = {};
+      for (long long t = 0; t < phase_len; ++t) {
+        LanesF xf;
+        std::memcpy(&xf, xp + t * kLanes, sizeof xf);
+        acc += hp[t] * __builtin_convertvector(xf, Lanes);
+      }
+      for (int l = 0; l < kLanes; ++l) y[static_cast<std::size_t>(n + j + l * up)] = static_cast<float>(acc[l]);
+    }
+  }
+};
+
 }  // namespace
 
 // Power series; the arguments here are at most the Kaiser beta, 5, where it converges in ~20 terms.
@@ -113,89 +201,19 @@ std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int
     throw Error("resample_poly: resampling from " + std::to_string(from_rate) + " Hz to " + std::to_string(to_rate) +
                 " Hz needs a filter of " + std::to_string(20 * max_rate + 1) + " taps (at most " +
                 std::to_string(20 * kMaxReducedRate + 1) + ")");
-  const long long half_len = 10 * max_rate;
-  const long long taps = 2 * half_len + 1;
-  const long long phase_len = (taps + up - 1) / up;
   const std::shared_ptr<const std::vector<double>> filter = polyphase_filter(up, down);
-  const std::vector<double>& phases = *filter;
-
+  Polyphase r{x, *filter, up, down};
   std::vector<float> y(static_cast<std::size_t>(n_out));
-  // Output n's first tap: phase p = k0 % up, taps from t0 = k0 / up on, reading x from i0.
-  const auto first_tap = [&](long long n, long long& p, long long& t0, long long& i0) {
-    const long long base = n * down - half_len;  // xu index of tap k = 0
-    long long k0 = ((-base) % up + up) % up;     // first tap with (base + k) divisible by up
-    i0 = (base + k0) / up;                       // x index of tap k0 (may be negative)
-    if (i0 < 0) {
-      k0 += (-i0) * up;
-      i0 = 0;
-    }
-    p = k0 % up;
-    t0 = k0 / up;
-  };
-  const auto one = [&](long long n) {
-    long long p = 0, t0 = 0, i0 = 0;
-    first_tap(n, p, t0, i0);
-    const double* hp = &phases[static_cast<std::size_t>(p * phase_len)];
-    double acc = 0.0;
-    for (long long t = t0, i = i0; p + t * up < taps && i < n_in; ++t, ++i)
-      acc += hp[t] * x[static_cast<std::size_t>(i)];
-    y[static_cast<std::size_t>(n)] = static_cast<float>(acc);
-  };
-  // Outputs n + l * up (l = 0..7) share a phase and read x at i0 + l * down: a tile of 8 * up
-  // outputs whose taps all lie inside x is computed phase by phase, eight outputs at once, from a
-  // transposed copy of its stretch of x (xt[j][l] = x[x0 + l * down + j]), so the eight products
-  // of a tap are one vector operation. Each output still sums its products in ascending tap order,
-  // from 0.0, as the plain loop does (a padding tap adds 0 * x, which leaves a nonzero sum as it
-  // is and can only turn a sum of -0 into +0).
-  constexpr int kLanes = 8;
-  const long long tile = kLanes * up;
-  std::vector<float> xt;
+  const long long tile = Polyphase::kLanes * up;
   long long n = 0;
   while (n < n_out) {
-    long long p0 = 0, t0 = 0, x0 = 0, p1 = 0, t1 = 0, i1 = 0;
-    bool interior = n + tile <= n_out;
-    if (interior) {
-      first_tap(n, p0, t0, x0);
-      first_tap(n + tile - 1, p1, t1, i1);
-      interior = t0 == 0 && i1 + phase_len <= n_in;
+    if (n + tile <= n_out && r.tile_inside(n)) {
+      r.tile(n, y);
+      n += tile;
+    } else {
+      y[static_cast<std::size_t>(n)] = r.one(n);
+      ++n;
     }
-    if (!interior) {
-      one(n++);
-      continue;
-    }
-    long long pj = 0, tj = 0, ij = 0;
-    first_tap(n + up - 1, pj, tj, ij);
-    const long long width = ij - x0 + phase_len;  // the stretch each lane reads
-    xt.resize(static_cast<std::size_t>(width * kLanes));
-    for (int l = 0; l < kLanes; ++l) {
-      const float* src = &x[static_cast<std::size_t>(x0 + l * down)];
-      for (long long j = 0; j < width; ++j) xt[static_cast<std::size_t>(j * kLanes + l)] = src[j];
-    }
-    // Output n + j's phase and first x index, stepped from output n's (one output further moves
-    // the filter by `down` input-rate samples) instead of divided out for each.
-    const long long step_phase = down % up, step_x = down / up;
-    pj = p0;
-    ij = x0;
-    for (long long j = 0; j < up; ++j) {
-      if (j > 0) {
-        pj -= step_phase;
-        ij += step_x;
-        if (pj < 0) {
-          pj += up;
-          ++ij;
-        }
-      }
-      const double* hp = &phases[static_cast<std::size_t>(pj * phase_len)];
-      const float* xp = &xt[static_cast<std::size_t>((ij - x0) * kLanes)];
-      Lanes acc = {};
-      for (long long t = 0; t < phase_len; ++t) {
-        LanesF xf;
-        std::memcpy(&xf, xp + t * kLanes, sizeof xf);
-        acc += hp[t] * __builtin_convertvector(xf, Lanes);
-      }
-      for (int l = 0; l < kLanes; ++l) y[static_cast<std::size_t>(n + j + l * up)] = static_cast<float>(acc[l]);
-    }
-    n += tile;
   }
   return y;
 }

@@ -361,8 +361,8 @@ void on_sigbus(int sig, siginfo_t* info, void* context) {
     const std::uintptr_t page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
     const std::uintptr_t from = addr / page * page;
     const std::uintptr_t end = m.end.load(std::memory_order_acquire);
-    void* p =
-        ::mmap(reinterpret_cast<void*>(from), end - from, PROT_READ, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0);
+    void* const at = reinterpret_cast<void*>(from);  // NOLINT(performance-no-int-to-ptr): the faulting page
+    void* p = ::mmap(at, end - from, PROT_READ, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0);
     if (p == MAP_FAILED) break;
     m.faulted.store(1, std::memory_order_release);
     return;

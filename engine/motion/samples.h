@@ -25,11 +25,11 @@ class Samples {
   Samples() = default;
   Samples(std::vector<T> values) : own_(std::move(values)) {}  // NOLINT(google-explicit-constructor)
   // size values at data, read in place while `owner` lives.
-  static Samples view(const T* data, std::size_t size, std::shared_ptr<const void> owner) {
+  static Samples view(const T* data, std::size_t size, const std::shared_ptr<const void>& owner) {
     Samples s;
     s.view_ = data;
     s.view_size_ = size;
-    s.owner_ = std::move(owner);
+    s.owner_ = owner;
     return s;
   }
 

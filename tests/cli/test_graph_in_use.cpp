@@ -36,6 +36,7 @@ Ended run_and_cut(const std::vector<std::string>& args, const std::string& victi
   std::vector<std::string> text = {GMG_BINARY};
   text.insert(text.end(), args.begin(), args.end());
   std::vector<char*> argv;
+  argv.reserve(text.size() + 1);
   for (std::string& a : text) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t pid = ::fork();
