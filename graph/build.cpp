@@ -11,6 +11,7 @@
 #include "graph/features.h"
 #include "graph/graph_builder.h"
 #include "graph/key_nodes.h"
+#include "graph/key_poses.h"
 
 namespace gmg {
 
@@ -144,6 +145,7 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
   for (const Transition& t : continuity_analysis(features, run_end, params, analysed))
     builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
   g.graph = builder.finish();
+  g.key_poses = key_junction_poses(g);
   return g;
 }
 

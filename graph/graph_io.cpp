@@ -1,19 +1,27 @@
 // Saving and loading built graphs.
 //
-// File format (version 3), little-endian:
+// File format (version 4), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload)
+//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity, key poses
+//            (write_payload)
 //   u64      checksum of the payload (engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory (motion samples; the edges
-// in compressed sparse row order: row starts, targets, weights, natural flags), so a load is
-// one pass of copies at memory speed and a save one pass of writes. A file with another magic
-// or version, a short or over-long payload or a wrong checksum is rejected before anything is
-// used.
+// The large parts are flat arrays in the layout they have in memory. The five largest (the
+// motion's rotations and translations, the speech features, the motion activity and the key
+// nodes' junction poses) each start
+// on a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads them in
+// place from the file's mapping (engine/core/files.h MappedFile): a load costs one checksum and
+// validation pass, the pages of the file are shared by every process that reads it, and none of
+// them is kept resident by the load. The edges and nodes, whose values index other arrays, are
+// validated and copied (a tenth of the file), so a file rewritten in place under a running gmg can
+// give wrong values, never an out-of-bounds read; the mapping then reports the change
+// (MotionGraph::check_unchanged). A file with another magic or version, a short or over-long
+// payload or a wrong checksum is rejected before anything is used.
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <memory>
 
 #include "engine/core/checksum.h"
 #include "engine/core/error.h"
@@ -22,12 +30,14 @@
 #include "engine/core/strings.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
+#include "graph/key_poses.h"
 
 namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
-constexpr std::uint32_t kVersion = 3;  // 3: the reference speech features
+constexpr std::uint32_t kVersion = 4;  // 3: the reference speech features; 4: aligned arrays read in place
+constexpr std::size_t kAlign = 4096;   // the sections read in place start at multiples of it
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -67,6 +77,15 @@ class Writer {
       bytes(chunk.data(), chunk.size() * sizeof(T));
     }
   }
+  // A list whose items start on a kAlign boundary of the file (after its count and zero padding).
+  template <typename T>
+  void aligned(const T* data, std::size_t n) {
+    static_assert(std::is_trivially_copyable<T>::value, "pod only");
+    pod<std::uint64_t>(n);
+    static const char zeros[kAlign] = {};
+    bytes(zeros, (kAlign - (kHeader + size_) % kAlign) % kAlign);
+    bytes(data, n * sizeof(T));
+  }
   std::uint64_t size() const { return size_; }
   std::uint64_t checksum() const { return sum_.value(); }
 
@@ -76,6 +95,30 @@ class Writer {
   Checksum sum_;
   std::uint64_t size_ = 0;
 };
+
+// Where the payload's bytes are: a mapped file (whose pages a pass gives back as it goes) or a
+// buffer; `owner` keeps them alive for the arrays read in place.
+struct Source {
+  const char* data = nullptr;  // the whole file
+  std::size_t size = 0;
+  const MappedFile* file = nullptr;
+  std::shared_ptr<const void> owner;
+  void release(std::size_t offset, std::size_t n) const {
+    if (file) file->release(offset, n);
+  }
+};
+
+// Runs visit(chunk, count) over n items of T at p in chunks of a few MB, giving each chunk's pages
+// back after it, so a pass over a large array does not leave it resident.
+template <typename T, typename F>
+void in_chunks(const Source& src, const T* p, std::size_t n, const F& visit) {
+  constexpr std::size_t kChunk = (std::size_t{4} << 20) / sizeof(T);
+  for (std::size_t i = 0; i < n; i += kChunk) {
+    const std::size_t m = std::min(kChunk, n - i);
+    visit(p + i, i, m);
+    src.release(static_cast<std::size_t>(reinterpret_cast<const char*>(p + i) - src.data), m * sizeof(T));
+  }
+}
 
 class Reader {
  public:
@@ -119,6 +162,20 @@ class Reader {
       take(i, v);
     }
     pos_ += n * sizeof(T);
+  }
+  // A list written by Writer::aligned: its items, in place (they live as long as the bytes).
+  template <typename T>
+  std::pair<const T*, std::size_t> aligned() {
+    const std::uint64_t n = pod<std::uint64_t>();
+    const std::size_t pad = (kAlign - (kHeader + pos_) % kAlign) % kAlign;
+    need(pad);
+    for (std::size_t i = 0; i < pad; ++i)
+      if (data_[pos_ + i] != 0) fail("padding that is not zero");
+    pos_ += pad;
+    if (n > (size_ - pos_) / sizeof(T)) fail("a list is longer than the file");
+    const T* p = reinterpret_cast<const T*>(data_ + pos_);
+    pos_ += static_cast<std::size_t>(n) * sizeof(T);
+    return {p, static_cast<std::size_t>(n)};
   }
   bool done() const { return pos_ == size_; }
   [[noreturn]] void fail(const std::string& what) const {
@@ -234,8 +291,8 @@ void write_payload(Writer& w, const MotionGraph& g) {
   }
   w.pod(g.motion.fps);
   w.pod<std::int32_t>(g.motion.frame_count);
-  w.vec(g.motion.rotations);
-  w.vec(g.motion.translations);
+  w.aligned(g.motion.rotations.data(), g.motion.rotations.size());
+  w.aligned(g.motion.translations.data(), g.motion.translations.size());
 
   // Nodes: every frame's kinds, then the labels of the keyword nodes only.
   const std::size_t n = static_cast<std::size_t>(g.frame_count());
@@ -256,25 +313,49 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.vec_of<double>(e, [&](std::size_t i) { return csr.m_edge_properties[i].weight; });
   w.vec_of<std::uint8_t>(e, [&](std::size_t i) { return std::uint8_t{csr.m_edge_properties[i].natural}; });
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
-  w.vec(g.speech);
-  w.vec(g.activity);
+  w.aligned(g.speech.data(), g.speech.size());
+  w.aligned(g.activity.data(), g.activity.size());
+  w.aligned(g.key_poses.data(), g.key_poses.size());
 }
 
 // The speech features: none, or frames x dims finite values.
-void read_speech(Reader& r, MotionGraph& g) {
+void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   const std::uint32_t dims = r.pod<std::uint32_t>();
   if (dims > 64) r.fail("implausible speech feature count");
   g.speech_dims = static_cast<int>(dims);
-  g.speech = r.vec<float>();
-  if (g.speech.size() != static_cast<std::size_t>(g.motion.frame_count) * dims)
+  const auto [speech, speech_n] = r.aligned<float>();
+  if (speech_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
     r.fail("speech features disagree with frames x features");
-  for (float v : g.speech)
-    if (!std::isfinite(v)) r.fail("a speech feature is not finite");
-  g.activity = r.vec<float>();
-  if (!g.activity.empty() && g.activity.size() != static_cast<std::size_t>(g.motion.frame_count))
+  bool finite = true;
+  in_chunks(src, speech, speech_n, [&](const float* p, std::size_t, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) finite = finite && std::isfinite(p[i]);
+  });
+  if (!finite) r.fail("a speech feature is not finite");
+  const auto [activity, activity_n] = r.aligned<float>();
+  if (activity_n != 0 && activity_n != static_cast<std::size_t>(g.motion.frame_count))
     r.fail("motion activity disagrees with the frame count");
-  for (float v : g.activity)
-    if (!std::isfinite(v) || v < 0.0f) r.fail("a motion activity is negative or not finite");
+  bool valid = true;
+  in_chunks(src, activity, activity_n, [&](const float* p, std::size_t, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) valid = valid && std::isfinite(p[i]) && p[i] >= 0.0f;
+  });
+  if (!valid) r.fail("a motion activity is negative or not finite");
+  g.speech = Samples<float>::view(speech, speech_n, src.owner);
+  g.activity = Samples<float>::view(activity, activity_n, src.owner);
+}
+
+// The key nodes' junction poses: none, or keys x junction_pose_dims finite values.
+void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
+  const auto [poses, n] = r.aligned<double>();
+  std::size_t keys = 0;
+  for (int f = 0; f < g.frame_count(); ++f) keys += g.is_key(f) ? 1 : 0;
+  if (n != 0 && n != keys * static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)))
+    r.fail("key poses disagree with key nodes x pose values");
+  bool finite = true;
+  in_chunks(src, poses, n, [&](const double* p, std::size_t, std::size_t m) {
+    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
+  });
+  if (!finite) r.fail("a key pose value is not finite");
+  g.key_poses = Samples<double>::view(poses, n, src.owner);
 }
 
 std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
@@ -342,25 +423,32 @@ std::vector<ClipInfo> read_clips(Reader& r, long long& covered) {
   return clips;
 }
 
-void read_motion(Reader& r, Motion& m) {
+void read_motion(Reader& r, const Source& src, Motion& m) {
   m.fps = r.pod<double>();
   m.frame_count = r.pod<std::int32_t>();
   if (!(m.fps >= limits::kMinFps && m.fps <= limits::kMaxFps))
     r.fail("frame rate " + format_number(m.fps) + " is outside " + format_number(limits::kMinFps) + " to " +
            format_number(limits::kMaxFps) + " fps");
   if (m.frame_count < 1 || m.frame_count > limits::kMaxFrames) r.fail("invalid frame count");
-  m.rotations = r.vec<glm::dquat>();
-  m.translations = r.vec<glm::dvec3>();
+  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
+  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
   const std::size_t joints = m.skeleton.joints.size();
   const std::size_t expected = static_cast<std::size_t>(m.frame_count) * joints;
-  if (m.rotations.size() != expected || m.translations.size() != expected)
-    r.fail("motion size disagrees with frames x joints");
-  for (std::size_t k = 0; k < expected; ++k) {
-    const glm::dquat& q = m.rotations[k];
-    const glm::dvec3& t = m.translations[k];
-    if (!std::isfinite(q.w + q.x + q.y + q.z + t.x + t.y + t.z) || std::abs(glm::dot(q, q) - 1.0) > 1e-6)
-      r.fail("frame " + std::to_string(k / joints) + " holds a value that is not finite or not a unit rotation");
-  }
+  if (rotations_n != expected || translations_n != expected) r.fail("motion size disagrees with frames x joints");
+  std::size_t bad = expected;
+  in_chunks(src, rotations, expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
+    for (std::size_t k = 0; k < n && bad == expected; ++k)
+      if (!std::isfinite(q[k].w + q[k].x + q[k].y + q[k].z) || std::abs(glm::dot(q[k], q[k]) - 1.0) > 1e-6)
+        bad = first + k;
+  });
+  in_chunks(src, translations, expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
+    for (std::size_t k = 0; k < n && first + k < bad; ++k)
+      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) bad = first + k;
+  });
+  if (bad != expected)
+    r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
+  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner);
+  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner);
 }
 
 // Natural edges are the capture's own frame steps: to the next frame, with weight 0.
@@ -374,22 +462,25 @@ void check_natural_edges(Reader& r, const GraphStorage& g) {
     }
 }
 
-MotionGraph read_payload(Reader& r) {
+MotionGraph read_payload(Reader& r, const Source& src) {
   MotionGraph g;
   g.params = read_params(r);
   g.motion.skeleton = read_skeleton(r);
   long long covered = 0;
   g.clips = read_clips(r, covered);
-  read_motion(r, g.motion);
+  read_motion(r, src, g.motion);
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count)));
   check_natural_edges(r, g.graph);
-  read_speech(r, g);
-  if (!r.done()) r.fail("trailing bytes after the speech features");
+  read_speech(r, src, g);
+  read_key_poses(r, src, g);
+  if (!r.done()) r.fail("trailing bytes after the key poses");
   return g;
 }
 
-MotionGraph parse_graph(const char* bytes, std::size_t total, const std::string& path) {
+MotionGraph parse_graph(const Source& src, const std::string& path) {
+  const char* bytes = src.data;
+  const std::size_t total = src.size;
   if (total < sizeof kMagic || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
     throw Error(path + ": not a gmg graph file (build one with 'gmg build')");
   if (total < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
@@ -407,12 +498,21 @@ MotionGraph parse_graph(const char* bytes, std::size_t total, const std::string&
                                   " bytes declared, " + std::to_string(present) + " present)"));
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
-  if (sum != checksum_of(bytes + kHeader, present)) throw Error(path + ": graph file is damaged (checksum mismatch)");
+  Checksum checksum;
+  in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
+  if (sum != checksum.value()) {
+    if (src.file) src.file->check_unchanged();  // a file cut short while it was read reads as zeros
+    throw Error(path + ": graph file is damaged (checksum mismatch)");
+  }
   Reader r(bytes + kHeader, present, path);
-  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r); });
+  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
 }
 
 }  // namespace
+
+void MotionGraph::check_unchanged() const {
+  if (source) source->check_unchanged();
+}
 
 void graph_save(const std::string& path, const MotionGraph& g) {
   Writer counter(nullptr);
@@ -435,12 +535,19 @@ void graph_save(const std::string& path, const MotionGraph& g) {
 }
 
 MotionGraph graph_load(const std::string& path) {
-  const MappedFile file(path);
-  return parse_graph(file.data(), file.size(), path);
+  auto file = std::make_shared<const MappedFile>(path);
+  Source src{file->data(), file->size(), file.get(), file};
+  MotionGraph g = parse_graph(src, path);
+  file->expect_random_reads();  // a reenactment reads the key poses and its paths' frames
+  g.source = std::move(file);
+  g.check_unchanged();
+  return g;
 }
 
 MotionGraph graph_parse(const std::string& bytes, const std::string& path) {
-  return parse_graph(bytes.data(), bytes.size(), path);
+  // The arrays read in place need bytes that outlive the call.
+  auto copy = std::make_shared<const std::string>(bytes);
+  return parse_graph(Source{copy->data(), copy->size(), nullptr, copy}, path);
 }
 
 }  // namespace gmg

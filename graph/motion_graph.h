@@ -16,12 +16,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 
+#include "engine/core/files.h"
 #include "engine/motion/motion.h"
 #include "graph/params.h"
 
@@ -54,6 +56,9 @@ struct ClipInfo {
   int frame_count = 0;
 };
 
+// A built graph owns its arrays; a loaded one (graph/graph_io.h) reads the motion, the speech
+// features and the activity in place from the file's mapping, which `source` keeps (and copies of
+// the graph share).
 struct MotionGraph {
   Motion motion;                // every reference clip, concatenated in order (node i = frame i)
   std::vector<ClipInfo> clips;  // in order, contiguous, covering all frames
@@ -62,12 +67,23 @@ struct MotionGraph {
   // The reference speech under every frame (audio/speech_features.h): frame_count x speech_dims
   // values, frame-major; empty (speech_dims 0) for a graph of clips given without them (a graph
   // file of format 2), which the planner then matches without speech.
-  std::vector<float> speech;
+  Samples<float> speech;
   int speech_dims = 0;
   // How much the upper body moves at every frame: its mean root-relative joint speed over the
   // graph's median of it (1 = the speaker's typical motion, near 0 = at rest); empty for a graph
   // without speech features. The speech-driven planner prefers rest where the new speech pauses.
-  std::vector<float> activity;
+  Samples<float> activity;
+  // Every key frame's junction pose (graph/key_poses.h), key after key in key_frames() order:
+  // keys x junction_pose_dims values; empty for a graph made without them (the planner then
+  // computes them from the motion).
+  Samples<double> key_poses;
+  // The file a loaded graph is served from; null for a graph built in memory.
+  std::shared_ptr<const MappedFile> source;
+
+  // Throws gmg::Error "FILE: changed while in use" when the file this graph is served from was
+  // truncated or written to since it was loaded (its arrays may then hold zeros or other values):
+  // called before anything made from the graph is written (graph_io.cpp).
+  void check_unchanged() const;
 
   int frame_count() const { return motion.frame_count; }
   bool has_speech() const { return speech_dims > 0; }

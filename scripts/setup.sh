@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake pkg-config git clang-format
-  libboost-graph-dev libeigen3-dev libaubio-dev libglm-dev libcairo2-dev
+  libboost-graph-dev libeigen3-dev libaubio-dev libfftw3-dev libglm-dev libcairo2-dev
   libcli11-dev nlohmann-json3-dev libzip-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
 )
 missing=()

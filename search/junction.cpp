@@ -1,6 +1,8 @@
 #include "search/junction.h"
 
-#include "graph/features.h"
+#include <algorithm>
+
+#include "graph/key_poses.h"
 
 namespace gmg {
 
@@ -14,21 +16,22 @@ JunctionCost::JunctionCost(const MotionGraph& g) : g_(g) {
     }
   // A graph without transitions has no scale of its own; 1 leaves d_pose as it is.
   if (count > 0 && sum > 0.0) normaliser_ = sum / static_cast<double>(count);
+  if (!g.key_poses.empty()) keys_ = g.key_frames();
 }
 
 const Eigen::VectorXd& JunctionCost::features(int f) {
   const auto hit = cache_.find(f);
   if (hit != cache_.end()) return hit->second;
-  // The frame with a natural neighbour, so its velocity is the capture's own (as in the graph).
-  const bool has_previous = f > 0 && !(g_.node(f - 1).kinds & kBreakNode);
-  const bool has_next = f + 1 < g_.frame_count() && !(g_.node(f).kinds & kBreakNode);
-  const int first = has_previous ? f - 1 : f;
-  const int last = has_previous || has_next ? first + 1 : f;
-  const PoseFeatures pf = pose_features(motion_slice(g_.motion, first, last + 1));
-  const int column = f - first;
-  Eigen::VectorXd v(2 * pf.positions.rows());
-  v << pf.positions.col(column), pf.velocities.col(column);
-  return cache_.emplace(f, std::move(v)).first->second;
+  // A key node's pose is in the graph (the same values junction_pose gives, computed when it was
+  // built), so ranking the key nodes does not read the motion.
+  const auto key = std::lower_bound(keys_.begin(), keys_.end(), f);
+  if (key != keys_.end() && *key == f) {
+    const Eigen::Index dims = junction_pose_dims(g_.motion.skeleton);
+    const double* p =
+        g_.key_poses.data() + static_cast<std::size_t>(key - keys_.begin()) * static_cast<std::size_t>(dims);
+    return cache_.emplace(f, Eigen::Map<const Eigen::VectorXd>(p, dims)).first->second;
+  }
+  return cache_.emplace(f, junction_pose(g_, f)).first->second;
 }
 
 double JunctionCost::cost(int c, int s) {

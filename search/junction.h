@@ -4,7 +4,8 @@
 // J(c, s) = d_pose(c, s) / w, with the graph's own d_pose (graph/features.h) and w the mean weight
 // of its unnatural edges, so one unit of J is what a typical transition of this graph costs.
 // Features are computed on demand for the frames asked about (forward kinematics of a frame and
-// its neighbour), so a planning job on an hour-long graph does not pay for every frame.
+// its neighbour, graph/key_poses.h), so a planning job on an hour-long graph does not pay for every
+// frame; those of the key nodes, which every subsequence ranks, come from the graph.
 #pragma once
 
 #include <unordered_map>
@@ -40,6 +41,7 @@ class JunctionCost {
   const MotionGraph& g_;
   double normaliser_ = 1.0;
   std::unordered_map<int, Eigen::VectorXd> cache_;
+  std::vector<int> keys_;  // the key frames, when the graph holds their poses
   // The batch matrix of `costs`: columns for the frames of the last list asked about.
   std::vector<int> batch_frames_;
   Eigen::MatrixXd batch_pos_, batch_vel_;

@@ -64,7 +64,7 @@ void SpeechMatch::beat_costs() {
   constexpr float kMinActivity = 0.3f;
   constexpr double kSigmaS = 0.1;
   const int n = g_.frame_count();
-  const std::vector<float>& a = g_.activity;
+  const Samples<float>& a = g_.activity;
   std::vector<int> beats;
   for (int f = 0; f < n; ++f) {
     if (!(a[static_cast<std::size_t>(f)] > kMinActivity)) continue;

@@ -7,6 +7,8 @@
 //  2. gmg build of a synthetic 427 s speaker (12,810 frames, the paper's longest reference);
 //  3. gmg build of a synthetic 1 h speaker (108,000 frames) and gmg reenact of a 77 s speech
 //     (the paper's longest test clip) from its graph (left out with --quick).
+// Onset analysis alone (audio::detect_onsets on the 64 s 2_scott_0_1_1.wav, already read, 21
+// runs), then whole `gmg reenact` commands from the BEAT2 graph, when ../shared/data is present.
 // In memory (one run each): the graph build alone (features and transitions, clips already read)
 // at half and full 427 s, so memory growth can be seen, and reenacting 77 s from the 427 s graph.
 // The synthetic speakers are written with `gmg synth` (25 joints) into a temporary folder first.
@@ -18,10 +20,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/synth/synth.h"
@@ -35,6 +39,12 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
 }
 
 double peak_rss_mb() {
@@ -163,6 +173,28 @@ void in_memory_figures(const Config& cfg) {
       ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
 }
 
+// audio::detect_onsets alone on a clip already in memory: min / median / max milliseconds.
+void onset_figures(const std::string& wav) {
+  const audio::Audio audio = audio::read_wav(wav);
+  std::vector<double> wall, cpu;
+  std::size_t onsets = 0;
+  for (int i = 0; i < 21; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_seconds();
+    const audio::OnsetAnalysis a = audio::detect_onsets(audio, audio::OnsetParams{});
+    cpu.push_back((thread_cpu_seconds() - c0) * 1000.0);
+    wall.push_back(seconds_since(t0) * 1000.0);
+    onsets = a.onset_frames.size();
+  }
+  const Spread w = spread(wall), c = spread(cpu);
+  std::printf(
+      "onset analysis alone, %s (%.1f s at %d Hz, %zu onsets; 21 runs, min / median / max):\n"
+      "  CPU %.1f / %.1f / %.1f ms, wall %.1f / %.1f / %.1f ms\n",
+      std::filesystem::path(wav).filename().c_str(), static_cast<double>(audio.samples.size()) / audio.sample_rate,
+      audio.sample_rate, onsets, c.min, c.median, c.max, w.min, w.median, w.max);
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -178,6 +210,12 @@ int main(int argc, char** argv) {
   if (!data.empty()) {
     bench_build("gmg build 2_scott_0_1_1 (1,906 frames)", data + "/beat2_scott/2_scott_0_1_1",
                 data + "/beat2_scott/2_scott_0_1_1.TextGrid", d + "/beat2.gmg", runs);
+    onset_figures(data + "/beat2_scott/2_scott_0_1_1.wav");
+    whole_command(
+        "gmg reenact 2_scott_0_2_2 (60 s) from the 2_scott_0_1_1 graph",
+        {GMG_BINARY, "reenact", "--graph", d + "/beat2.gmg", "--audio", data + "/beat2_scott/2_scott_0_2_2.wav",
+         "--transcript", data + "/beat2_scott/2_scott_0_2_2.TextGrid", "-o", d + "/beat2_0_2_2.bvh"},
+        runs);
   } else {
     std::printf("../shared/data is absent: skipping the 2_scott_0_1_1 figure\n");
   }

@@ -78,6 +78,7 @@ void run_inspect(const InspectArgs& a) {
   const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);
   if (!a.graphml.empty()) graph_write_graphml(a.graphml, g, from, to);
+  g.check_unchanged();
   outputs.commit();
 }
 

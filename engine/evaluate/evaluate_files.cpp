@@ -19,6 +19,7 @@ std::vector<Motion> read_reference(const std::string& path, const std::string& s
     const MotionGraph g = graph_load(path);
     for (const ClipInfo& c : g.clips)
       clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
+    g.check_unchanged();
   } else {
     clips.push_back(motion_read(path, skeleton));
   }

@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/motion/rotation.h"
+#include "engine/motion/samples.h"
 
 namespace gmg {
 
@@ -51,18 +52,19 @@ bool skeletons_match(const Skeleton& a, const Skeleton& b, std::string* why = nu
 
 struct Motion {
   Skeleton skeleton;
-  double fps = 30.0;                     // frames per second (> 0)
-  int frame_count = 0;                   // >= 0
-  std::vector<glm::dquat> rotations;     // local joint rotations, unit, frame_count * joint_count
-  std::vector<glm::dvec3> translations;  // local joint translations, frame_count * joint_count:
-                                         // the position channels where a joint has them (they
-                                         // replace the OFFSET), otherwise the OFFSET
+  double fps = 30.0;    // frames per second (> 0)
+  int frame_count = 0;  // >= 0
+  // The samples are owned, or read in place from a graph file (engine/motion/samples.h).
+  Samples<glm::dquat> rotations;     // local joint rotations, unit, frame_count * joint_count
+  Samples<glm::dvec3> translations;  // local joint translations, frame_count * joint_count:
+                                     // the position channels where a joint has them (they
+                                     // replace the OFFSET), otherwise the OFFSET
   // Optional: empty, or frame_count * joint_count Euler angles (radians, in each joint's
   // rotation_order) exactly as a BVH file gave them. The writer reproduces them where they
   // still describe the stored rotation, so a read-write round trip keeps a file's own choice
   // of Euler solution (files switch solution branches near gimbal lock). Anything that makes
   // new frames (resampling, blending) leaves it empty.
-  std::vector<glm::dvec3> euler_hints;
+  Samples<glm::dvec3> euler_hints;
 
   int joint_count() const { return skeleton.joint_count(); }
   std::size_t index(int frame, int joint) const {

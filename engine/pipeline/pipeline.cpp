@@ -193,6 +193,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   Reenactment r;
   r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
   r.motion = assemble_motion(g, r.plan, assembly_params(config));
+  g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
   r.report =
       reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -147,6 +149,52 @@ TEST(Files, MappedFileRefusesWhatTheReaderRefuses) {
   const std::string fifo = dir.file("pipe.gmg");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   EXPECT_EQ(error_of([&] { MappedFile f(fifo); }), fifo + ": is a FIFO (named pipe), not a regular file");
+}
+
+TEST(Files, MappedFileCutShortReadsZerosAndSaysSo) {
+  TempDir dir;
+  const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  write_text(dir.file("g.gmg"), std::string(3 * page, 'x'));
+  const MappedFile file(dir.file("g.gmg"));
+  EXPECT_FALSE(file.changed());
+  EXPECT_EQ(file.data()[page + 1], 'x');
+  ASSERT_EQ(::truncate(dir.file("g.gmg").c_str(), static_cast<off_t>(page)), 0);
+  // Without the SIGBUS handler this read past the file's new end kills the process.
+  EXPECT_EQ(file.data()[2 * page + 5], '\0');
+  EXPECT_EQ(file.data()[page + 1], '\0');
+  EXPECT_TRUE(file.changed());
+  EXPECT_EQ(
+      error_of([&] { file.check_unchanged(); }),
+      dir.file("g.gmg") + ": changed while in use (it was truncated or written to; read it again when it is complete)");
+}
+
+TEST(Files, MappedFileNoticesAWriteInPlace) {
+  TempDir dir;
+  write_text(dir.file("g.gmg"), std::string(10000, 'x'));
+  // An old modification time, so the write below changes it whatever the clock's resolution.
+  const timespec old_times[2] = {{1000000, 0}, {1000000, 0}};
+  ASSERT_EQ(::utimensat(AT_FDCWD, dir.file("g.gmg").c_str(), old_times, 0), 0);
+  const MappedFile file(dir.file("g.gmg"));
+  file.check_unchanged();
+  {
+    std::fstream f(dir.file("g.gmg"), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(5000);
+    f.put('y');
+  }
+  EXPECT_TRUE(file.changed());
+  EXPECT_NE(error_of([&] { file.check_unchanged(); }).find(": changed while in use"), std::string::npos);
+}
+
+TEST(Files, MappedFileReleaseKeepsTheBytes) {
+  TempDir dir;
+  std::string bytes(200000, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 7 % 251);
+  write_text(dir.file("g.gmg"), bytes);
+  const MappedFile file(dir.file("g.gmg"));
+  EXPECT_EQ(std::string(file.data(), file.size()), bytes);
+  file.release(0, file.size());  // the pages go back to the page cache, the bytes stay readable
+  EXPECT_EQ(std::string(file.data(), file.size()), bytes);
+  EXPECT_FALSE(file.changed());
 }
 
 TEST(Files, RenameIntoPlaceReplacesTheFile) {
