@@ -16,7 +16,7 @@ using namespace gmg::testing;
 MotionGraph four_frames() {
   MotionGraph g = chain_graph(4, {}, {}, {});
   g.speech_dims = 2;
-  g.speech = {0, 0, 1, 0, 2, 0, 3, 0};
+  g.speech = std::vector<float>{0, 0, 1, 0, 2, 0, 3, 0};
   return g;
 }
 
@@ -68,8 +68,8 @@ TEST(SpeechMatch, InactiveWithoutFeaturesAndSizesAreChecked) {
 
 TEST(SpeechMatch, RestCostsInPausesOnly) {
   MotionGraph g = four_frames();
-  g.speech = {0, 0, 0, 0, 0, 0, 0, 0};  // all alike: only the rest term differs
-  g.activity = {0.0f, 1.0f, 2.0f, 0.5f};
+  g.speech = std::vector<float>{0, 0, 0, 0, 0, 0, 0, 0};  // all alike: only the rest term differs
+  g.activity = std::vector<float>{0.0f, 1.0f, 2.0f, 0.5f};
   // Test frame 0 speaks (loudness 0), frame 1 is a full pause (-4: 40 dB below speech), frame 2
   // half one (-2.75).
   const std::vector<float> test = {0, 0, -4, 0, -2.75f, 0};
