@@ -1,7 +1,9 @@
 // BVH writing: the hierarchy as read, angles chosen per joint to stay continuous.
 #include "engine/motion/bvh.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string_view>
 
 #include "engine/core/files.h"
 #include "engine/core/math.h"
@@ -61,8 +63,15 @@ std::string bvh_format(const Motion& m) {
       int rot_index = 0;
       for (Channel c : joint.channels) {
         const double v = is_position_channel(c) ? t[channel_axis(c)] : angles[rot_index++] / kDegToRad;
-        std::snprintf(buf, sizeof buf, first_value ? "%.6f" : " %.6f", v == 0.0 ? 0.0 : v);
-        out += buf;
+        const int n = std::snprintf(buf, sizeof buf, first_value ? "%.6f" : " %.6f", v);
+        // A value that rounds to zero is written 0.000000 whatever its sign (-1e-9 and 1e-9 are
+        // one value in the file), so a motion that comes back through another format keeps its
+        // bytes.
+        const std::string_view text(buf, static_cast<std::size_t>(std::max(0, n)));
+        if (text == "-0.000000" || text == " -0.000000")
+          out += first_value ? "0.000000" : " 0.000000";
+        else
+          out += text;
         first_value = false;
       }
     }
