@@ -4,8 +4,11 @@
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload)
+//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity (write_payload),
+//            and in version 4 only, the SMPL-X body (write_body)
 //   u64      checksum of the payload (engine/core/checksum.h)
+// A graph without a body (BVH references) is written as version 3, so it stays readable by a gmg
+// that predates the body; version 4 is version 3 with the body section appended.
 // The large parts are flat arrays in the layout they have in memory (motion samples; the edges
 // in compressed sparse row order: row starts, targets, weights, natural flags), so a load is
 // one pass of copies at memory speed and a save one pass of writes. A file with another magic
@@ -27,7 +30,8 @@ namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
-constexpr std::uint32_t kVersion = 3;  // 3: the reference speech features
+constexpr std::uint32_t kVersion = 3;      // 3: the reference speech features
+constexpr std::uint32_t kBodyVersion = 4;  // 4: 3 and the SMPL-X body (shape, per-frame face)
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -260,6 +264,36 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.vec(g.activity);
 }
 
+bool has_body(const MotionGraph& g) {
+  return g.body.has_face() || !g.body.betas.empty() || !g.body.gender.empty() || !g.body.model.empty();
+}
+
+// Version 4's section: face dims, face (frames x dims doubles), betas, gender, model.
+void write_body(Writer& w, const SmplxBody& b) {
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(b.expression_dims));
+  w.vec(b.expressions);
+  w.vec(b.betas);
+  w.str(b.gender);
+  w.str(b.model);
+}
+
+void read_body(Reader& r, MotionGraph& g) {
+  SmplxBody& b = g.body;
+  const std::uint32_t dims = r.pod<std::uint32_t>();
+  if (dims > 10000) r.fail("implausible face coefficient count");
+  b.expression_dims = static_cast<int>(dims);
+  b.expressions = r.vec<double>();
+  if (b.expressions.size() != static_cast<std::size_t>(g.motion.frame_count) * dims)
+    r.fail("the face disagrees with frames x coefficients");
+  b.betas = r.vec<double>();
+  if (b.betas.size() > 10000) r.fail("implausible betas count");
+  for (const std::vector<double>* v : {&b.expressions, &b.betas})
+    for (double x : *v)
+      if (!std::isfinite(x)) r.fail("a face or shape value is not finite");
+  b.gender = r.str();
+  b.model = r.str();
+}
+
 // The speech features: none, or frames x dims finite values.
 void read_speech(Reader& r, MotionGraph& g) {
   const std::uint32_t dims = r.pod<std::uint32_t>();
@@ -374,7 +408,7 @@ void check_natural_edges(Reader& r, const GraphStorage& g) {
     }
 }
 
-MotionGraph read_payload(Reader& r) {
+MotionGraph read_payload(Reader& r, std::uint32_t version) {
   MotionGraph g;
   g.params = read_params(r);
   g.motion.skeleton = read_skeleton(r);
@@ -385,7 +419,9 @@ MotionGraph read_payload(Reader& r) {
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count)));
   check_natural_edges(r, g.graph);
   read_speech(r, g);
-  if (!r.done()) r.fail("trailing bytes after the speech features");
+  if (version >= kBodyVersion) read_body(r, g);
+  if (!r.done())
+    r.fail(version >= kBodyVersion ? "trailing bytes after the body" : "trailing bytes after the speech features");
   return g;
 }
 
@@ -395,9 +431,9 @@ MotionGraph parse_graph(const char* bytes, std::size_t total, const std::string&
   if (total < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
   std::uint32_t version = 0;
   std::memcpy(&version, bytes + 8, sizeof version);
-  if (version != kVersion)
-    throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads version " +
-                std::to_string(kVersion) + ": rebuild it with 'gmg build'");
+  if (version != kVersion && version != kBodyVersion)
+    throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads versions " +
+                std::to_string(kVersion) + " and " + std::to_string(kBodyVersion) + ": rebuild it with 'gmg build'");
   std::uint64_t size = 0;
   std::memcpy(&size, bytes + 12, sizeof size);
   const std::size_t present = total - kHeader - sizeof(std::uint64_t);
@@ -409,24 +445,27 @@ MotionGraph parse_graph(const char* bytes, std::size_t total, const std::string&
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
   if (sum != checksum_of(bytes + kHeader, present)) throw Error(path + ": graph file is damaged (checksum mismatch)");
   Reader r(bytes + kHeader, present, path);
-  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r); });
+  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, version); });
 }
 
 }  // namespace
 
 void graph_save(const std::string& path, const MotionGraph& g) {
+  const bool body = has_body(g);
   Writer counter(nullptr);
   write_payload(counter, g);
+  if (body) write_body(counter, g.body);
   write_file_atomically(
       path,
       [&](std::ostream& out) {
         out.write(kMagic, sizeof kMagic);
-        const std::uint32_t version = kVersion;
+        const std::uint32_t version = body ? kBodyVersion : kVersion;
         out.write(reinterpret_cast<const char*>(&version), sizeof version);
         const std::uint64_t size = counter.size();
         out.write(reinterpret_cast<const char*>(&size), sizeof size);
         Writer w(&out);
         write_payload(w, g);
+        if (body) write_body(w, g.body);
         if (w.size() != size) throw Error(path + ": graph changed while it was written");
         const std::uint64_t sum = w.checksum();
         out.write(reinterpret_cast<const char*>(&sum), sizeof sum);

@@ -23,6 +23,7 @@
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 
 #include "engine/motion/motion.h"
+#include "engine/motion/npz.h"
 #include "graph/params.h"
 
 namespace gmg {
@@ -68,6 +69,10 @@ struct MotionGraph {
   // graph's median of it (1 = the speaker's typical motion, near 0 = at rest); empty for a graph
   // without speech features. The speech-driven planner prefers rest where the new speech pauses.
   std::vector<float> activity;
+  // The SMPL-X body of references read from .npz (engine/motion/npz.h): their shape, and their face
+  // under every frame (body.expressions: frame_count x body.expression_dims, or empty); empty for
+  // BVH references. A reenactment plays the face along with the motion.
+  SmplxBody body;
 
   int frame_count() const { return motion.frame_count; }
   bool has_speech() const { return speech_dims > 0; }

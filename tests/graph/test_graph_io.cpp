@@ -100,6 +100,48 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   EXPECT_EQ(a.onset_nodes, b.onset_nodes);
 }
 
+// The SMPL-X body (shape and per-frame face) is the file's one optional section: a graph with one
+// is written as version 4 and loads with it exactly; one without stays version 3, byte for byte
+// the layout before the section existed.
+TEST(GraphIo, TheBodyIsAnOptionalSectionOfVersion4) {
+  MotionGraph g = two_clip_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("plain.gmg"), g);
+  const std::string plain = read_file_bytes(dir.file("plain.gmg"));
+  EXPECT_EQ(plain[8], 3);
+  EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
+
+  g.body.expression_dims = 2;
+  for (int f = 0; f < g.frame_count(); ++f)
+    g.body.expressions.insert(g.body.expressions.end(), {0.5 * f, -1.0 / (f + 1)});
+  g.body.betas = {1.25, -0.75, 3.0};
+  g.body.gender = "female";
+  g.body.model = "smplx2020";
+  graph_save(dir.file("body.gmg"), g);
+  const std::string bytes = read_file_bytes(dir.file("body.gmg"));
+  EXPECT_EQ(bytes[8], 4);
+  const MotionGraph h = graph_load(dir.file("body.gmg"));
+  EXPECT_EQ(h.body.expression_dims, 2);
+  EXPECT_EQ(h.body.expressions, g.body.expressions);
+  EXPECT_EQ(h.body.betas, g.body.betas);
+  EXPECT_EQ(h.body.gender, "female");
+  EXPECT_EQ(h.body.model, "smplx2020");
+  // The section follows the version 3 payload: the rest of the file is the same bytes.
+  EXPECT_EQ(bytes.compare(20, plain.size() - 28, plain, 20, plain.size() - 28), 0);
+
+  // A face that does not cover the frames is refused, even behind a valid checksum.
+  MotionGraph bad = g;
+  bad.body.expressions.pop_back();
+  graph_save(dir.file("bad.gmg"), bad);
+  try {
+    graph_load(dir.file("bad.gmg"));
+    ADD_FAILURE() << "a face shorter than the frames was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the face disagrees with frames x coefficients"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   const MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
