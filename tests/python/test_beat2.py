@@ -41,7 +41,10 @@ def test_build_and_reenact_of_the_shared_beat2_clip_equal_the_command_line(beat2
         # The face moves with the body: it changes from frame to frame, within the speaker's range.
         e = out["expressions"]
         assert np.abs(np.diff(e, axis=0)).mean() > 0.1 * np.abs(np.diff(orig["expressions"], axis=0)).mean()
-        assert e.min() >= orig["expressions"].min() - 1 and e.max() <= orig["expressions"].max() + 1
+        # Inertialized offsets may carry a coefficient a little past the reference's own range
+        # (measured: 6.96 against 6.07), never far.
+        lo, hi = orig["expressions"].min(), orig["expressions"].max()
+        assert lo - 0.25 * (hi - lo) <= e.min() and e.max() <= hi + 0.25 * (hi - lo)
     assert r.report["body"] == {"face": "reference", "betas": "reference"}
 
 
