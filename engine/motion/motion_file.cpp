@@ -56,6 +56,13 @@ ConvertSummary motion_convert(const std::string& in, const std::string& out, con
   s.joints = m.joint_count();
   s.fps = m.fps;
   if (is_npz_path(out)) {
+    bool joint_positions = false;
+    for (std::size_t j = 1; j < m.skeleton.joints.size(); ++j)
+      for (Channel c : m.skeleton.joints[j].channels) joint_positions = joint_positions || is_position_channel(c);
+    if (joint_positions)
+      s.notes.push_back(in +
+                        " has position channels on joints other than the root: an .npz holds the root's "
+                        "translation only, so they come back as the joints' offsets");
     if (has_smplx_names(m.skeleton) && !body.has_face())
       s.notes.push_back(in + " has no face: the .npz's expressions are zeros");
     if (has_smplx_names(m.skeleton) && body.betas.empty())

@@ -39,11 +39,14 @@ struct ConvertSummary {
 };
 
 // Reads `in` (motion_read, with its body) and writes `out` (motion_write). What is exact: BVH ->
-// npz -> BVH with NpzFloats::Float64 gives the BVH's bytes back for a BVH written by gmg (any BVH
-// once passed through `gmg convert x.bvh y.bvh`), and with Beat2 every rotation within float32's
-// rounding (< 3e-7 rad) and the root unchanged; npz -> BVH -> npz keeps every pose and `trans` to
-// the BVH's six decimals (rotations within 1e-6 rad, positions within 1e-6 m) and the frame rate
-// exactly, while a BVH holds no body: the face and shape are lost (ConvertSummary says so).
+// npz -> BVH with NpzFloats::Float64 gives the BVH's bytes back when gmg chose its Euler angles
+// (any BVH gmg writes from rotations: a reenactment, a conversion from .npz) and its only position
+// channels are the root's; a file's own angles come back as the same rotations (1e-6 rad), as
+// another Euler solution where the file keeps one near gimbal lock that is not the continuous
+// one. With Beat2 floats every rotation is kept to float32's rounding (< 3e-7 rad) and the root
+// unchanged. npz -> BVH -> npz keeps every pose and `trans` to the BVH's six decimals (rotations
+// within 1e-6 rad, positions within 1e-6 m) and the frame rate exactly, while a BVH holds no
+// body: the face and shape are lost. ConvertSummary's notes say what the output cannot hold.
 // Errors as motion_read and motion_write, and gmg::Error when out is in (check_outputs_apart).
 ConvertSummary motion_convert(const std::string& in, const std::string& out, const ConvertOptions& options);
 

@@ -93,7 +93,11 @@ std::vector<double> betas_of(const NpyArray& a, const std::string& where) {
 
 SmplxBody read_body(const ZipReader& zip, const std::string& name, std::uint64_t frames) {
   SmplxBody body;
-  if (zip.has("betas.npy")) body.betas = betas_of(member_array(zip, "betas", name), name + ": betas.npy");
+  if (zip.has("betas.npy")) {
+    body.betas = betas_of(member_array(zip, "betas", name), name + ": betas.npy");
+    // All zeros (the mean shape) is what gmg writes for a motion without a shape: none known.
+    if (std::all_of(body.betas.begin(), body.betas.end(), [](double v) { return v == 0.0; })) body.betas.clear();
+  }
   if (zip.has("expressions.npy")) {
     const NpyArray e = member_array(zip, "expressions", name);
     const std::string where = name + ": expressions.npy";

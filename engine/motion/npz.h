@@ -76,8 +76,8 @@ glm::dvec3 npz_root_rest(const Skeleton& skeleton);
 // array (the message lists the archive's arrays), a malformed .npy, a shape that does not fit
 // the template, a value that is not finite, a frame rate that is not positive, zero frames.
 // With out_body, the body's arrays are read too (each optional; `expressions` must have the
-// poses' frame count, every value finite; all zeros, as written for a motion without a face,
-// is no face).
+// poses' frame count, every value finite; all-zero expressions or betas, as written for a motion
+// without a face or shape, are none).
 Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton,
                  SmplxBody* out_body = nullptr);
 

@@ -1,7 +1,10 @@
 // Tests of engine/motion/motion_file's motion_convert (`gmg convert`): what is exact in each
 // direction between BVH and SMPL-X .npz, with hand-built motions and the shared BEAT2 recording.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -172,6 +175,38 @@ TEST(Convert, SharedBeat2NpzToBvhGivesTheBeat2BvhAndBackGivesTheNpz) {
   EXPECT_LT(worst_angle, 1e-6);
   EXPECT_LT(worst_root, 1e-6);
   EXPECT_EQ(body.betas, original_body.betas);
+}
+
+TEST(Convert, SharedBvhsComeBackThroughAnNpzAsTheSameRotations) {
+  GMG_REQUIRE_SHARED_DATA();
+  // A file's own Euler angles (ZEGGS keeps solutions near gimbal lock that are not the continuous
+  // choice) come back as the same rotations; position channels of joints other than the root
+  // (the GENEA skeleton's) come back as the joints' offsets, and a note says so.
+  for (const std::string name : {"zeggs/067_Speech_2_x_1_0.bvh", "genea2023_format/sample1.bvh"}) {
+    testing::TempDir dir;
+    const std::string original = testing::shared_data_dir() + "/" + name;
+    ConvertOptions o;
+    o.floats = NpzFloats::Float64;
+    const ConvertSummary s = motion_convert(original, dir.file("m.npz"), o);
+    const bool genea = name.rfind("genea", 0) == 0;
+    EXPECT_EQ(!s.notes.empty() && contains(s.notes[0], "has position channels on joints other than the root"), genea)
+        << name;
+    o.skeleton = original;
+    motion_convert(dir.file("m.npz"), dir.file("m.bvh"), o);
+    const Motion a = bvh_read(original), b = bvh_read(dir.file("m.bvh"));
+    ASSERT_EQ(a.frame_count, b.frame_count) << name;
+    double worst = 0;
+    for (std::size_t i = 0; i < a.rotations.size(); ++i)
+      worst = std::max(worst, rotation_angle_between(a.rotations[i], b.rotations[i]));
+    EXPECT_LT(worst, 1e-6) << name;
+    for (int f = 0; f < a.frame_count; ++f) {
+      EXPECT_LT(glm::length(a.translation(f, 0) - b.translation(f, 0)), 1e-6) << name << " frame " << f;
+      for (int j = 1; j < a.joint_count(); ++j)
+        if (genea) {
+          EXPECT_EQ(b.translation(f, j), b.skeleton.joints[static_cast<std::size_t>(j)].offset);
+        }
+    }
+  }
 }
 
 }  // namespace
