@@ -5,19 +5,21 @@
 //   u32      format version
 //   u64      payload size in bytes
 //   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity, key poses
-//            (write_payload)
+//            (write_payload), the SMPL-X body (write_body: empty for BVH references)
 //   u64      checksum of the payload (engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The five largest (the
-// motion's rotations and translations, the speech features, the motion activity and the key
-// nodes' junction poses) each start
-// on a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads them in
-// place from the file's mapping (engine/core/files.h MappedFile): a load costs one checksum and
-// validation pass, the pages of the file are shared by every process that reads it, and none of
-// them is kept resident by the load. The edges and nodes, whose values index other arrays, are
-// validated and copied (a tenth of the file), so a file rewritten in place under a running gmg can
-// give wrong values, never an out-of-bounds read; the mapping then reports the change
-// (MotionGraph::check_unchanged). A file with another magic or version, a short or over-long
-// payload or a wrong checksum is rejected before anything is used.
+// The large parts are flat arrays in the layout they have in memory. The six largest (the
+// motion's rotations and translations, the speech features, the motion activity, the key
+// nodes' junction poses and the body's face) each start on a 4096-byte boundary of the file
+// (zero bytes pad up to it), so a loaded graph reads the first five in place from the file's
+// mapping (engine/core/files.h MappedFile): a load costs one checksum and validation pass, the
+// pages of the file are shared by every process that reads it, and none of them is kept resident
+// by the load. The face is copied (SmplxBody holds its own arrays; a graph from BVH references
+// has none). The edges and nodes, whose values index other arrays, are validated and copied (a
+// tenth of the file), so a file rewritten in place under a running gmg can give wrong values,
+// never an out-of-bounds read; the mapping then reports the change
+// (MotionGraph::check_unchanged). A file with another magic or version (older versions
+// included: 3 had no key poses and unaligned arrays, 4 no body), a short or over-long payload or
+// a wrong checksum is rejected before anything is used.
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -36,7 +38,8 @@ namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
-constexpr std::uint32_t kVersion = 4;  // 3: the reference speech features; 4: aligned arrays read in place
+constexpr std::uint32_t kVersion = 5;  // 3: the reference speech features; 4: aligned arrays read in
+                                       // place; 5: and the SMPL-X body (shape, per-frame face)
 constexpr std::size_t kAlign = 4096;   // the sections read in place start at multiples of it
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -280,6 +283,16 @@ Skeleton read_skeleton(Reader& r) {
   return sk;
 }
 
+// The body: face dims, the face (frames x dims doubles, aligned), betas, gender, model; all empty
+// for a graph of BVH references.
+void write_body(Writer& w, const SmplxBody& b) {
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(b.expression_dims));
+  w.aligned(b.expressions.data(), b.expressions.size());
+  w.vec(b.betas);
+  w.str(b.gender);
+  w.str(b.model);
+}
+
 void write_payload(Writer& w, const MotionGraph& g) {
   write_params(w, g.params);
   write_skeleton(w, g.motion.skeleton);
@@ -316,6 +329,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
   w.aligned(g.key_poses.data(), g.key_poses.size());
+  write_body(w, g.body);
 }
 
 // The speech features: none, or frames x dims finite values.
@@ -356,6 +370,27 @@ void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
   });
   if (!finite) r.fail("a key pose value is not finite");
   g.key_poses = Samples<double>::view(poses, n, src.owner);
+}
+
+// Reads write_body's section (the face is copied: SmplxBody owns its arrays).
+void read_body(Reader& r, const Source& src, MotionGraph& g) {
+  SmplxBody& b = g.body;
+  const std::uint32_t dims = r.pod<std::uint32_t>();
+  if (dims > 10000) r.fail("implausible face coefficient count");
+  b.expression_dims = static_cast<int>(dims);
+  const auto [face, face_n] = r.aligned<double>();
+  if (face_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
+    r.fail("the face disagrees with frames x coefficients");
+  b.expressions.reserve(face_n);
+  in_chunks(src, face, face_n,
+            [&](const double* p, std::size_t, std::size_t n) { b.expressions.insert(b.expressions.end(), p, p + n); });
+  b.betas = r.vec<double>();
+  if (b.betas.size() > 10000) r.fail("implausible betas count");
+  for (const std::vector<double>* v : {&b.expressions, &b.betas})
+    for (double x : *v)
+      if (!std::isfinite(x)) r.fail("a face or shape value is not finite");
+  b.gender = r.str();
+  b.model = r.str();
 }
 
 std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
@@ -474,7 +509,8 @@ MotionGraph read_payload(Reader& r, const Source& src) {
   check_natural_edges(r, g.graph);
   read_speech(r, src, g);
   read_key_poses(r, src, g);
-  if (!r.done()) r.fail("trailing bytes after the key poses");
+  read_body(r, src, g);
+  if (!r.done()) r.fail("trailing bytes after the body");
   return g;
 }
 

@@ -25,6 +25,7 @@
 
 #include "engine/core/files.h"
 #include "engine/motion/motion.h"
+#include "engine/motion/npz.h"
 #include "graph/params.h"
 
 namespace gmg {
@@ -84,6 +85,10 @@ struct MotionGraph {
   // truncated or written to since it was loaded (its arrays may then hold zeros or other values):
   // called before anything made from the graph is written (graph_io.cpp).
   void check_unchanged() const;
+  // The SMPL-X body of references read from .npz (engine/motion/npz.h): their shape, and their face
+  // under every frame (body.expressions: frame_count x body.expression_dims, or empty); empty for
+  // BVH references. A reenactment plays the face along with the motion.
+  SmplxBody body;
 
   int frame_count() const { return motion.frame_count; }
   bool has_speech() const { return speech_dims > 0; }

@@ -10,8 +10,8 @@
 #include "engine/metrics/evaluate.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
-#include "engine/motion/bvh.h"
 #include "engine/motion/cleanup.h"
+#include "engine/motion/motion_file.h"
 #include "engine/pipeline/pipeline.h"
 #include "search/initialisation.h"
 #include "text/transcript.h"
@@ -313,7 +313,7 @@ Config setup_config(AblationSetup setup, const Config& base) {
 Recording read_recording(const AblationInputs& in, const Config& base) {
   Recording rec;
   rec.name = in.motion;
-  rec.motion = bvh_read(in.motion);
+  rec.motion = motion_read(in.motion, in.skeleton);
   motion_lock_and_smooth(rec.motion, base.cleanup.lock_joints, base.cleanup.smooth_window, base.cleanup.smooth_order,
                          in.motion);
   rec.sound = audio::read_audio(in.audio);
@@ -349,6 +349,7 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
   for (AblationSetup s : kSetups) result.rows.push_back({s, {}});
 
   std::vector<FoldData> prepared_folds;
+  prepared_folds.reserve(folds.size());
   for (const TimeFold& split : folds) prepared_folds.push_back(prepare_fold(rec, split, options));
   add_mismatched_speech(prepared_folds);
   for (const FoldData& fold : prepared_folds) {

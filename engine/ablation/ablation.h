@@ -61,7 +61,8 @@ struct TimeFold {
 std::vector<TimeFold> time_folds(int frames, int k, int min_frames);
 
 struct AblationInputs {
-  std::string motion, audio, transcript;  // one recording; transcript "" = none
+  std::string motion, audio, transcript;  // one recording (BVH or SMPL-X .npz); transcript "" = none
+  std::string skeleton{};                 // BVH skeleton template of an .npz motion (engine/motion/npz.h); "" = none
 };
 
 struct AblationOptions {

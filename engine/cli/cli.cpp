@@ -49,6 +49,7 @@ int cli_main(int argc, char** argv) {
   add_config_command(app);
   add_render_command(app);
   add_analyse_command(app);
+  add_convert_command(app);
   // A repeatable option's empty default would print as "=[]": nothing worth showing.
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     for (CLI::Option* o : sub->get_options())

@@ -12,7 +12,7 @@ namespace gmg {
 namespace {
 
 struct AblationArgs {
-  std::string motion, audio, transcript, csv, bins = "overflow";
+  std::string motion, audio, transcript, skeleton, csv, bins = "overflow";
   AblationOptions options;
   int seeds = 5;
   ConfigOptions config;
@@ -23,11 +23,14 @@ void run_ablation(AblationArgs& a) {
   for (int i = 0; i < a.seeds; ++i) a.options.seeds.push_back(static_cast<std::uint64_t>(i + 1));
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
   const Config cfg = a.config.make();
-  std::vector<NamedFile> inputs = {
-      {"--motion", a.motion}, {"--audio", a.audio}, {"--transcript", transcript_or_none(a.transcript)}};
+  std::vector<NamedFile> inputs = {{"--motion", a.motion},
+                                   {"--audio", a.audio},
+                                   {"--transcript", transcript_or_none(a.transcript)},
+                                   {"--skeleton", a.skeleton}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
   check_outputs_apart({{"--csv", a.csv}}, inputs);
-  const AblationResult result = ablation_run({a.motion, a.audio, transcript_or_none(a.transcript)}, a.options, cfg);
+  const AblationResult result =
+      ablation_run({a.motion, a.audio, transcript_or_none(a.transcript), a.skeleton}, a.options, cfg);
   std::cout << ablation_markdown(result);
   if (!a.csv.empty()) {
     const std::string csv = ablation_csv(result);
@@ -41,9 +44,10 @@ void add_ablation_command(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("ablation", "the paper's Table 2 with baselines: time folds of one recording, seven setups");
   auto a = std::make_shared<AblationArgs>();
-  cmd->add_option("--motion", a->motion, "recording's BVH")->required();
+  cmd->add_option("--motion", a->motion, "the recording's motion: BVH, or SMPL-X .npz with --skeleton")->required();
   cmd->add_option("--audio", a->audio, "its WAV")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (optional)");
+  cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --motion its skeleton");
   cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
       ->capture_default_str();
   cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")

@@ -27,9 +27,4 @@ std::vector<NamedFile> config_input_files(const ConfigOptions& options, const Co
 
 std::string transcript_or_none(const std::string& t) { return t == "none" ? std::string() : t; }
 
-void write_json_file(const std::string& path, const nlohmann::ordered_json& j) {
-  const std::string text = json_dump(j, 2) + "\n";
-  write_file_atomically(path, [&](std::ostream& os) { os << text; });
-}
-
 }  // namespace gmg

@@ -20,6 +20,7 @@
 #include "engine/config/config.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/json.h"  // write_json_file
 
 namespace CLI {
 class App;
@@ -53,10 +54,6 @@ std::vector<NamedFile> config_input_files(const ConfigOptions& options, const Co
 // "none" means the clip has no transcript (so a transcript can be left out inside a list).
 std::string transcript_or_none(const std::string& t);
 
-// Writes j indented by 2 with a final newline, atomically (json_dump: invalid UTF-8 in a string,
-// e.g. a Latin-1 file name, is replaced, never thrown on).
-void write_json_file(const std::string& path, const nlohmann::ordered_json& j);
-
 void add_build_command(CLI::App& app);
 void add_inspect_command(CLI::App& app);
 void add_reenact_command(CLI::App& app);
@@ -66,6 +63,7 @@ void add_synth_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_analyse_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
 // Registers the "batch" subcommand on app (with its own --config FILE and --set key=value options,
 // applied in that order, then --seed). Its callback runs batch_run with progress on std::cerr and
 // sets *exit_code: 0 every clip made or skipped, 1 some clip failed, 2 a setup error (printed as

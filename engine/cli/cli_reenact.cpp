@@ -17,7 +17,7 @@ namespace {
 
 struct ReenactArgs {
   std::string graph, audio, transcript, output, report, format = "auto";
-  std::string ref_motion, ref_audio, ref_transcript, skeleton, tier;
+  std::string ref_motion, ref_audio, ref_transcript, skeleton, tier, betas;
   ConfigOptions config;
 };
 
@@ -30,9 +30,13 @@ void run_reenact(const ReenactArgs& a) {
                                    {"--reference-audio", a.ref_audio},
                                    {"--reference-transcript", transcript_or_none(a.ref_transcript)},
                                    {"--audio", a.audio},
-                                   {"--transcript", transcript_or_none(a.transcript)}};
+                                   {"--transcript", transcript_or_none(a.transcript)},
+                                   {"--skeleton", a.skeleton},
+                                   {"--betas", a.betas}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
   check_outputs_apart({{"-o", a.output}, {"--report", a.report}}, inputs);
+  // Read first: a bad file stops the command before the long work.
+  const std::vector<double> betas = a.betas.empty() ? std::vector<double>() : read_betas_file(a.betas);
   OutputTransaction outputs;  // the BVH and the report, both or neither
   MotionGraph g;
   std::string graph_name = a.graph;
@@ -47,9 +51,10 @@ void run_reenact(const ReenactArgs& a) {
         cfg);
     graph_name = a.ref_motion;
   }
-  const Reenactment r = reenact(
+  Reenactment r = reenact(
       g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier}, cfg, graph_name);
-  motion_write(a.output, r.motion);
+  if (!a.betas.empty()) reenactment_use_betas(r, betas, a.betas);
+  motion_write(a.output, r.motion, r.body);
   if (!a.report.empty()) write_json_file(a.report, r.report);
   outputs.commit();
   const auto& t = r.report["totals"];
@@ -73,7 +78,10 @@ void add_reenact_command(CLI::App& app) {
   cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
   cmd->add_option("--tier", a->tier, "TextGrid tier of the words (default: 'words', else the only interval tier)");
   cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --reference-motion its skeleton");
-  cmd->add_option("-o,--output", a->output, "motion to write: .bvh, or .npz (SMPL-X, for BEAT2/EMAGE tools)")
+  cmd->add_option("--betas", a->betas,
+                  "an .npz with `betas` (or an .npy) whose body shape an .npz output gets (default: the reference's)");
+  cmd->add_option("-o,--output", a->output,
+                  "motion to write: .bvh, or .npz (SMPL-X as BEAT2 ships it, with the reference's shape and face)")
       ->required();
   cmd->add_option("--report", a->report, "JSON report to write");
   a->config.add(cmd, true);

@@ -3,11 +3,14 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "engine/cli/cli_common.h"
+#include "engine/core/enum_names.h"
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 #include "engine/render/render.h"
 
 namespace gmg {
@@ -16,7 +19,8 @@ namespace {
 struct RenderArgs {
   render::RenderInputs inputs;
   render::RenderOptions options;
-  std::string view = "front", size = "640x480", format = "auto";
+  std::string view = "front", size = "640x480", format = "auto", overlay = "all";
+  std::optional<double> from, to, still;
 };
 
 void parse_size(const std::string& text, render::RenderOptions& o) {
@@ -33,9 +37,22 @@ void run_render(RenderArgs& a) {
   a.options.view = render::parse_view(a.view);
   parse_size(a.size, a.options);
   a.inputs.transcript_format = text::parse_transcript_format(a.format);
-  const render::RenderSummary r = render::render_video(a.inputs, a.options);
+  a.options.overlay = *enum_from_name(render::kOverlayNames, a.overlay);
+  if (a.still && (a.from || a.to)) throw UsageError("render: --still draws one frame; it takes no --from or --to");
+  if (a.from) a.options.from_s = *a.from;
+  if (a.to) a.options.to_s = *a.to;
+  if (a.to && !(*a.to > a.options.from_s))
+    throw UsageError("render: --to " + format_number(*a.to) + " must be after --from " +
+                     format_number(a.options.from_s));
+  const render::RenderSummary r =
+      a.still ? render::render_still(a.inputs, a.options, *a.still) : render::render_video(a.inputs, a.options);
   for (const std::string& n : r.notes) std::cerr << "gmg: warning: " << n << "\n";
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (a.still) {
+    std::cout << "wrote " << a.inputs.output << ": the frame at " << format_number(*a.still) << " s, " << r.width << "x"
+              << r.height << "\n";
+    return;
+  }
   std::cout << "wrote " << a.inputs.output << ": " << r.frames << " frames at " << r.fps << " fps, " << r.width << "x"
             << r.height;
   if (r.audio_s >= 0) std::cout << ", audio " << r.audio_s << " s";
@@ -61,7 +78,18 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--size", a->size, "pixels per figure, WIDTHxHEIGHT (even)")->capture_default_str();
   cmd->add_option("--ffmpeg", a->options.ffmpeg, "the ffmpeg tool")->capture_default_str();
-  cmd->add_option("-o,--output", in.output, "the video to write (.mp4, .mkv or .mov)")->required();
+  cmd->add_option("--from", a->from, "draw from this time on (seconds; the audio is cut to the range)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--to", a->to, "draw up to this time (seconds)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--still", a->still, "draw only the frame at this time (seconds) into a .png -o")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--overlay", a->overlay,
+                  "what is drawn over the figures: all (event strip and badges with --report, labels), strip (no "
+                  "badges) or none (the figures only)")
+      ->check(CLI::IsMember({"none", "strip", "all"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", in.output, "the video to write (.mp4, .mkv or .mov), or a .png with --still")
+      ->required();
   cmd->callback([a] { run_render(*a); });
 }
 

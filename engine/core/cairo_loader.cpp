@@ -64,6 +64,9 @@ void cairo_fill_preserve(cairo_t* cr) { GMG_CAIRO_FORWARD(cairo_fill_preserve, (
 cairo_surface_t* cairo_image_surface_create(cairo_format_t format, int width, int height) {
   GMG_CAIRO_FORWARD(cairo_image_surface_create, (format, width, height));
 }
+cairo_surface_t* cairo_image_surface_create_from_png(const char* filename) {
+  GMG_CAIRO_FORWARD(cairo_image_surface_create_from_png, (filename));
+}
 unsigned char* cairo_image_surface_get_data(cairo_surface_t* surface) {
   GMG_CAIRO_FORWARD(cairo_image_surface_get_data, (surface));
 }

@@ -80,4 +80,9 @@ std::string json_dump(const nlohmann::json& j, int indent) {
   return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+void write_json_file(const std::string& path, const nlohmann::ordered_json& j) {
+  const std::string text = json_dump(j, 2) + "\n";
+  write_file_atomically(path, [&](std::ostream& os) { os << text; });
+}
+
 }  // namespace gmg

@@ -25,4 +25,9 @@ nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const st
 std::string json_dump(const nlohmann::ordered_json& j, int indent = 2);
 std::string json_dump(const nlohmann::json& j, int indent = 2);
 
+// Writes j indented by 2 with a final newline, atomically (json_dump: invalid UTF-8 in a string,
+// e.g. a Latin-1 file name, is replaced, never thrown on). What `gmg reenact --report` and the
+// Python module's reports write.
+void write_json_file(const std::string& path, const nlohmann::ordered_json& j);
+
 }  // namespace gmg

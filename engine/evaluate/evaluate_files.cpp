@@ -2,6 +2,7 @@
 
 #include "audio/audio_file.h"
 #include "engine/core/error.h"
+#include "engine/core/json.h"
 #include "engine/core/strings.h"
 #include "engine/evaluate/plot.h"
 #include "engine/metrics/naturalness.h"
@@ -11,9 +12,8 @@
 #include "graph/graph_io.h"
 
 namespace gmg {
-namespace {
 
-std::vector<Motion> read_reference(const std::string& path, const std::string& skeleton) {
+std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton) {
   std::vector<Motion> clips;
   if (ends_with_ci(path, ".gmg")) {
     const MotionGraph g = graph_load(path);
@@ -26,55 +26,72 @@ std::vector<Motion> read_reference(const std::string& path, const std::string& s
   return clips;
 }
 
-}  // namespace
-
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
-  EvaluateResult result;
-  Motion generated = motion_read(in.generated, in.skeleton);
-  Motion truth;
+  EvaluateLoaded l;
+  l.generated = motion_read(in.generated, in.skeleton);
+  l.generated_name = in.generated;
   if (!in.truth.empty()) {
-    truth = motion_read(in.truth, in.skeleton);
-    if (in.trim && truth.frame_count != generated.frame_count) {
-      Motion& longer = truth.frame_count > generated.frame_count ? truth : generated;
-      const int keep = std::min(truth.frame_count, generated.frame_count);
-      result.warnings.push_back("--trim: cut " + std::to_string(longer.frame_count - keep) +
-                                " frame(s) off the end of " + (&longer == &truth ? in.truth : in.generated) + " (" +
-                                std::to_string(longer.frame_count) + " -> " + std::to_string(keep) + ")");
-      longer = motion_slice(longer, 0, keep);
-    }
+    l.truth = motion_read(in.truth, in.skeleton);
+    l.truth_name = in.truth;
   }
-  audio::Audio sound;
-  if (!in.audio.empty()) sound = audio::read_audio(in.audio);
-  std::vector<audio::Audio> others;
-  for (const std::string& path : in.other_audio) others.push_back(audio::read_audio(path));
-  const std::vector<Motion> reference =
-      in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference, in.skeleton);
+  if (!in.audio.empty()) {
+    l.audio = audio::read_audio(in.audio);
+    l.audio_name = in.audio;
+  }
+  for (const std::string& path : in.other_audio) l.other_audio.push_back(audio::read_audio(path));
+  l.other_audio_names = in.other_audio;
+  if (!in.reference.empty()) l.reference = read_reference_clips(in.reference, in.skeleton);
+  l.reference_name = in.reference;
+  if (!in.report.empty()) {
+    l.report = read_json_file(in.report);
+    l.report_name = in.report;
+  }
+  l.trim = in.trim;
+  l.plot = in.plot;
+  return evaluate_loaded(std::move(l), options);
+}
+
+EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options) {
+  EvaluateResult result;
+  Motion& generated = in.generated;
+  Motion& truth = in.truth;
+  const bool has_truth = !in.truth_name.empty(), has_audio = !in.audio_name.empty(),
+             has_report = !in.report_name.empty(), has_reference = !in.reference_name.empty();
+  if (has_truth && in.trim && truth.frame_count != generated.frame_count) {
+    Motion& longer = truth.frame_count > generated.frame_count ? truth : generated;
+    const int keep = std::min(truth.frame_count, generated.frame_count);
+    result.warnings.push_back("--trim: cut " + std::to_string(longer.frame_count - keep) + " frame(s) off the end of " +
+                              (&longer == &truth ? in.truth_name : in.generated_name) + " (" +
+                              std::to_string(longer.frame_count) + " -> " + std::to_string(keep) + ")");
+    longer = motion_slice(longer, 0, keep);
+  }
   ReportFacts facts;
-  if (!in.report.empty()) facts = read_report_facts(in.report, generated.fps);
+  if (has_report) facts = report_facts_of(in.report, generated.fps, in.report_name);
 
   EvaluateData data;
   data.generated = &generated;
-  data.generated_name = in.generated;
-  if (!in.truth.empty()) {
+  data.generated_name = in.generated_name;
+  if (has_truth) {
     data.truth = &truth;
-    data.truth_name = in.truth;
+    data.truth_name = in.truth_name;
   }
-  for (const Motion& m : reference) data.reference.push_back(&m);
-  data.reference_name = in.reference;
-  if (!in.audio.empty()) data.audio = &sound;
-  for (const audio::Audio& a : others) data.other_audio.push_back(&a);
-  if (!in.report.empty()) data.source_frames = &facts.source_frames;
+  if (has_reference)
+    for (const Motion& m : in.reference) data.reference.push_back(&m);
+  data.reference_name = in.reference_name;
+  if (has_audio) data.audio = &in.audio;
+  for (const audio::Audio& a : in.other_audio) data.other_audio.push_back(&a);
+  if (has_report) data.source_frames = &facts.source_frames;
   const nlohmann::ordered_json metrics = evaluate_motions(data, options);
 
-  nlohmann::ordered_json inputs = {{"generated", in.generated}};
-  if (!in.truth.empty()) inputs["truth"] = in.truth;
-  if (!in.audio.empty()) inputs["audio"] = in.audio;
-  if (!in.other_audio.empty()) inputs["other_audio"] = in.other_audio;
-  if (!in.reference.empty()) inputs["reference"] = in.reference;
-  if (!in.report.empty()) inputs["report"] = in.report;
+  nlohmann::ordered_json inputs = {{"generated", in.generated_name}};
+  if (has_truth) inputs["truth"] = in.truth_name;
+  if (has_audio) inputs["audio"] = in.audio_name;
+  if (!in.other_audio_names.empty()) inputs["other_audio"] = in.other_audio_names;
+  if (has_reference) inputs["reference"] = in.reference_name;
+  if (has_report) inputs["report"] = in.report_name;
   result.json["inputs"] = inputs;
   for (auto it = metrics.begin(); it != metrics.end(); ++it) result.json[it.key()] = it.value();
-  if (!in.report.empty()) {
+  if (has_report) {
     result.json["failures"] = facts.totals["failures"];
     if (facts.totals.contains("fallbacks")) result.json["fallbacks"] = facts.totals["fallbacks"];
   }
@@ -83,12 +100,12 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   if (!in.plot.empty()) {
     EvaluationPlot p;
     p.fps = generated.fps;
-    p.title = in.generated;
+    p.title = in.generated_name;
     const double scale = length_unit_to_cm(generated.skeleton);
     p.generated_speed = mean_joint_speed(motion_forward_kinematics(generated) * scale, generated.fps);
-    if (!in.truth.empty()) p.truth_speed = mean_joint_speed(motion_forward_kinematics(truth) * scale, truth.fps);
-    if (!in.audio.empty()) {
-      const SpeechTrack track = speech_track(sound);
+    if (has_truth) p.truth_speed = mean_joint_speed(motion_forward_kinematics(truth) * scale, truth.fps);
+    if (has_audio) {
+      const SpeechTrack track = speech_track(in.audio);
       p.envelope = track.envelope;
       p.onsets_s = track.onset_times_s;
     }

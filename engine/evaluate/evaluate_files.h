@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "audio/wav.h"
 #include "engine/metrics/evaluate.h"
+#include "engine/motion/motion.h"
 
 namespace gmg {
 
@@ -29,5 +31,29 @@ struct EvaluateResult {
 };
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options);
+
+// What evaluate_files reads, in memory (the Python module's objects): the same evaluation and
+// JSON. Each name labels errors and the JSON's "inputs"; an empty name means the input is absent.
+struct EvaluateLoaded {
+  Motion generated;
+  std::string generated_name;
+  Motion truth;
+  std::string truth_name;
+  audio::Audio audio;
+  std::string audio_name;
+  std::vector<audio::Audio> other_audio;
+  std::vector<std::string> other_audio_names;  // one per other_audio
+  std::vector<Motion> reference;               // the reference's clips
+  std::string reference_name;
+  nlohmann::json report;  // a reenactment report
+  std::string report_name;
+  bool trim = false;
+  std::string plot;
+};
+
+EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options);
+
+// The reference clips evaluate_files reads from `path`: a graph's clips (.gmg), else one motion.
+std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton);
 
 }  // namespace gmg

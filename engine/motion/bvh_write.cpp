@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <string_view>
 
 #include "engine/core/files.h"
 #include "engine/core/math.h"
@@ -66,9 +67,12 @@ std::string bvh_format(const Motion& m) {
         // std::to_chars is printf's "%.6f" (the standard defines it so) without its locale and
         // its arbitrary-precision digits: writing the values was a third of a short reenactment.
         if (!first_value) out += ' ';
-        const std::to_chars_result r =
-            std::to_chars(num, num + sizeof num, v == 0.0 ? 0.0 : v, std::chars_format::fixed, 6);
-        out.append(num, r.ptr);
+        const std::to_chars_result r = std::to_chars(num, num + sizeof num, v, std::chars_format::fixed, 6);
+        // A value that rounds to zero is written 0.000000 whatever its sign (-1e-9 and 1e-9 are
+        // one value in the file), so a motion that comes back through another format keeps its
+        // bytes.
+        const std::string_view text(num, static_cast<std::size_t>(r.ptr - num));
+        out += text == "-0.000000" ? std::string_view("0.000000") : text;
         first_value = false;
       }
     }

@@ -193,9 +193,15 @@ std::string npy_preamble(const std::string& descr, const std::vector<std::uint64
   return out + dict;
 }
 
-}  // namespace
+// The parsed preamble of an .npy file: its header and where its data starts.
+struct NpyHeader {
+  std::string dtype;
+  bool fortran = false;
+  std::vector<std::uint64_t> shape;
+  std::size_t data_offset = 0;
+};
 
-NpyArray npy_parse(std::string_view bytes, const std::string& name) {
+NpyHeader parse_preamble(std::string_view bytes, const std::string& name) {
   if (bytes.size() < kMagicSize + 4 || bytes.substr(0, kMagicSize) != std::string_view(kMagic, kMagicSize))
     throw Error(name + ": not a .npy array (no \\x93NUMPY magic)");
   const auto* u = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -210,31 +216,75 @@ NpyArray npy_parse(std::string_view bytes, const std::string& name) {
   if (data_offset > bytes.size())
     throw Error(name + ": truncated .npy header (it declares " + std::to_string(header_size) + " bytes, the file has " +
                 std::to_string(bytes.size() - 8 - length_size) + ")");
+  NpyHeader h;
+  HeaderParser(bytes.substr(8 + length_size, header_size), name).parse(h.dtype, h.fortran, h.shape);
+  h.data_offset = static_cast<std::size_t>(data_offset);
+  return h;
+}
 
+// The element count of a shape, refused when the data would exceed kMaxBytes at `item_size` bytes each.
+std::uint64_t element_count(const std::vector<std::uint64_t>& shape, std::size_t item_size, const std::string& name) {
+  std::uint64_t count = 1;
+  for (std::uint64_t d : shape) {
+    if (d != 0 && count > kMaxBytes / d) throw Error(name + ": shape " + shape_text(shape) + " is too large");
+    count *= d;
+  }
+  if (count > kMaxBytes / item_size) throw Error(name + ": shape " + shape_text(shape) + " is too large");
+  return count;
+}
+
+void check_data_size(const NpyHeader& h, std::uint64_t need, std::size_t have, const std::string& name) {
+  if (have != need)
+    throw Error(name + ": shape " + shape_text(h.shape) + " of " + h.dtype + " needs " + std::to_string(need) +
+                " bytes of data, the array has " + std::to_string(have) + (have < need ? " (truncated)" : ""));
+}
+
+}  // namespace
+
+NpyArray npy_parse(std::string_view bytes, const std::string& name) {
+  const NpyHeader h = parse_preamble(bytes, name);
   NpyArray a;
-  bool fortran = false;
-  HeaderParser(bytes.substr(8 + length_size, header_size), name).parse(a.dtype, fortran, a.shape);
+  a.dtype = h.dtype;
+  a.shape = h.shape;
   const Dtype* type = nullptr;
   for (const Dtype& t : kDtypes)
     if (a.dtype == t.name) type = &t;
   if (!type) throw Error(name + ": " + describe_dtype_problem(a.dtype));
-  if (fortran && a.shape.size() > 1)
+  if (h.fortran && a.shape.size() > 1)
     throw Error(name + ": Fortran-order arrays are not supported (save with numpy.ascontiguousarray)");
-
-  std::uint64_t count = 1;
-  for (std::uint64_t d : a.shape) {
-    if (d != 0 && count > kMaxBytes / d) throw Error(name + ": shape " + shape_text(a.shape) + " is too large");
-    count *= d;
-  }
-  if (count > kMaxBytes / type->size) throw Error(name + ": shape " + shape_text(a.shape) + " is too large");
-  const std::uint64_t need = count * type->size, have = bytes.size() - data_offset;
-  if (have != need)
-    throw Error(name + ": shape " + shape_text(a.shape) + " of " + a.dtype + " needs " + std::to_string(need) +
-                " bytes of data, the array has " + std::to_string(have) + (have < need ? " (truncated)" : ""));
+  const std::uint64_t count = element_count(a.shape, type->size, name);
+  check_data_size(h, count * type->size, bytes.size() - h.data_offset, name);
   a.values.resize(static_cast<std::size_t>(count));
-  const unsigned char* p = u + data_offset;
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + h.data_offset;
   for (std::size_t i = 0; i < a.values.size(); ++i, p += type->size) a.values[i] = decode(p, *type);
   return a;
+}
+
+std::string npy_parse_text(std::string_view bytes, const std::string& name) {
+  const NpyHeader h = parse_preamble(bytes, name);
+  std::uint64_t width = 0;
+  const bool is_text = h.dtype.size() > 2 && h.dtype[0] == '<' && h.dtype[1] == 'U';
+  for (std::size_t i = 2; is_text && i < h.dtype.size(); ++i) {
+    if (h.dtype[i] < '0' || h.dtype[i] > '9' || width > 1000000) {
+      width = 0;
+      break;
+    }
+    width = width * 10 + static_cast<std::uint64_t>(h.dtype[i] - '0');
+  }
+  if (width == 0) throw Error(name + ": expected text (dtype '<U<length>'), found dtype '" + h.dtype + "'");
+  if (element_count(h.shape, 4, name) != 1)
+    throw Error(name + ": expected one text, found shape " + shape_text(h.shape));
+  check_data_size(h, 4 * width, bytes.size() - h.data_offset, name);
+  std::string out;
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + h.data_offset;
+  for (std::uint64_t i = 0; i < width; ++i, p += 4) {
+    const std::uint64_t c = read_le(p, 4);
+    if (c == 0) break;  // numpy pads a shorter text with NULs
+    if (c > 0x7E || c < 0x20)
+      throw Error(name + ": the text holds a character gmg does not keep (only printable ASCII)");
+    out += static_cast<char>(c);
+  }
+  return out;
 }
 
 std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t>& shape,
@@ -250,6 +300,14 @@ std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t
       std::uint64_t bits;
       std::memcpy(&bits, &v, sizeof bits);
       append_le(out, bits, 8);
+    }
+  } else if (dtype == "<f4") {
+    for (double v : values) {
+      const auto f = static_cast<float>(v);
+      if (std::isfinite(v) && !std::isfinite(f)) throw Error("npy_format: " + std::to_string(v) + " exceeds float32");
+      std::uint32_t bits;
+      std::memcpy(&bits, &f, sizeof bits);
+      append_le(out, bits, 4);
     }
   } else if (dtype == "<i4") {
     for (double v : values) {

@@ -32,9 +32,15 @@ struct NpyArray {
 // the caller decides what they mean.
 NpyArray npy_parse(std::string_view bytes, const std::string& name);
 
+// The text of a one-element text array (dtype "<U<length>", UTF-32, as numpy saves a str), its
+// trailing NULs dropped. Only printable ASCII is accepted (SMPL-X archives hold "neutral",
+// "smplx2020"); another dtype, shape or character is a gmg::Error naming `name`.
+std::string npy_parse_text(std::string_view bytes, const std::string& name);
+
 // The .npy bytes (format 1.0, header padded to 64 bytes as numpy pads it) of a C-order array.
-// dtype "<f8" writes the values as doubles, "<i4" as 32-bit integers (values must be whole and
-// in range).
+// dtype "<f8" writes the values as doubles, "<f4" as floats (rounded to nearest; a finite value
+// beyond float32's range is an error), "<i4" as 32-bit integers (values must be whole and in
+// range).
 std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t>& shape,
                        const std::vector<double>& values);
 

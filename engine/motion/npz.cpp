@@ -1,6 +1,7 @@
 // SMPL-X .npz motion: the arrays of npy.h mapped onto a template skeleton.
 #include "engine/motion/npz.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -12,14 +13,9 @@ namespace gmg {
 namespace {
 
 constexpr int kSmplxJoints = 55;
-constexpr int kBeat2Betas = 300;
-constexpr int kBeat2Expressions = 100;
-
-bool has_smplx_names(const Skeleton& sk) {
-  for (const std::string& n : smplx_joint_names())
-    if (sk.find(n) < 0) return false;
-  return true;
-}
+// Limits of the body's arrays: far above any body model (SMPL-X: 300 betas, 100 expressions;
+// FLAME: 400), far below what would exhaust memory.
+constexpr std::uint64_t kMaxBetas = 10000, kMaxExpressionDims = 10000;
 
 // For each archive joint k, the skeleton joint it drives: by SMPL-X name when `archive_joints` is
 // 55 and the skeleton has every SMPL-X name, else by position when the counts agree. Empty when
@@ -75,7 +71,67 @@ double frame_rate(const ZipReader& zip, const std::string& name) {
   return fps;
 }
 
+// An optional text array (gender, model): "" when absent or not a text numpy wrote as str (some
+// archives store bytes or objects there; the body is still usable without its label).
+std::string optional_text(const ZipReader& zip, const std::string& key, const std::string& name) {
+  if (!zip.has(key + ".npy")) return "";
+  try {
+    return npy_parse_text(zip.read(key + ".npy"), name + ": " + key + ".npy");
+  } catch (const Error&) {
+    return "";
+  }
+}
+
+// The betas of an array: 1-D, or 1 x N as some tools save them; finite.
+std::vector<double> betas_of(const NpyArray& a, const std::string& where) {
+  const bool row = a.shape.size() == 2 && a.shape[0] == 1;
+  if (!(a.shape.size() == 1 || row) || a.values.empty() || a.values.size() > kMaxBetas)
+    throw Error(where + ": expected shape (betas,) or (1, betas), found " + shape_of(a));
+  check_finite(a, a.values.size(), where);
+  return a.values;
+}
+
+SmplxBody read_body(const ZipReader& zip, const std::string& name, std::uint64_t frames) {
+  SmplxBody body;
+  if (zip.has("betas.npy")) {
+    body.betas = betas_of(member_array(zip, "betas", name), name + ": betas.npy");
+    // All zeros (the mean shape) is what gmg writes for a motion without a shape: none known.
+    if (std::all_of(body.betas.begin(), body.betas.end(), [](double v) { return v == 0.0; })) body.betas.clear();
+  }
+  if (zip.has("expressions.npy")) {
+    const NpyArray e = member_array(zip, "expressions", name);
+    const std::string where = name + ": expressions.npy";
+    if (e.shape.size() != 2 || e.shape[0] != frames || e.shape[1] == 0 || e.shape[1] > kMaxExpressionDims)
+      throw Error(where + ": expected shape (" + std::to_string(frames) + ", coefficients) to match poses, found " +
+                  shape_of(e));
+    check_finite(e, e.shape[1], where);
+    // All zeros is no face: what gmg (and other tools) write for a motion without one.
+    if (std::any_of(e.values.begin(), e.values.end(), [](double v) { return v != 0.0; })) {
+      body.expression_dims = static_cast<int>(e.shape[1]);
+      body.expressions = e.values;
+    }
+  }
+  body.gender = optional_text(zip, "gender", name);
+  body.model = optional_text(zip, "model", name);
+  return body;
+}
+
 }  // namespace
+
+bool has_smplx_names(const Skeleton& sk) {
+  for (const std::string& n : smplx_joint_names())
+    if (sk.find(n) < 0) return false;
+  return true;
+}
+
+glm::dvec3 beat2_pelvis_rest() { return {0.002777, -0.383289, 0.010682}; }
+
+glm::dvec3 npz_root_rest(const Skeleton& sk) {
+  if (sk.joints.empty()) return glm::dvec3(0.0);
+  const glm::dvec3 offset = sk.joints[0].offset;
+  if (offset != glm::dvec3(0.0)) return offset;
+  return has_smplx_names(sk) ? beat2_pelvis_rest() : glm::dvec3(0.0);
+}
 
 const std::vector<std::string>& smplx_joint_names() {
   static const std::vector<std::string> names = [] {
@@ -93,7 +149,7 @@ const std::vector<std::string>& smplx_joint_names() {
   return names;
 }
 
-Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton) {
+Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton, SmplxBody* out_body) {
   if (skeleton.joint_count() == 0) throw Error(name + ": the skeleton template has no joints");
   const ZipReader zip(bytes, name);
   for (const char* key : {"poses", "trans"})
@@ -121,7 +177,7 @@ Motion npz_parse(const std::string& bytes, const std::string& name, const Skelet
 
   Motion m = motion_rest(skeleton, frame_rate(zip, name), static_cast<int>(frames));
   m.euler_hints.clear();
-  const glm::dvec3 root_offset = skeleton.joints[0].offset;
+  const glm::dvec3 root_rest = npz_root_rest(skeleton);
   for (int f = 0; f < m.frame_count; ++f) {
     const double* row = &poses.values[static_cast<std::size_t>(f) * poses.shape[1]];
     for (int k = 0; k < joints; ++k) {
@@ -129,54 +185,83 @@ Motion npz_parse(const std::string& bytes, const std::string& name, const Skelet
       m.rotations[m.index(f, map[k])] = expmap_to_quat(glm::dvec3(v[0], v[1], v[2]));
     }
     const double* t = &trans.values[static_cast<std::size_t>(f) * 3];
-    m.translations[m.index(f, 0)] = glm::dvec3(t[0], t[1], t[2]) + root_offset;
+    m.translations[m.index(f, 0)] = glm::dvec3(t[0], t[1], t[2]) + root_rest;
   }
+  if (out_body) *out_body = read_body(zip, name, frames);
   return m;
 }
 
-Motion npz_read(const std::string& path, const Skeleton& skeleton) {
-  return npz_parse(read_file_bytes(path), path, skeleton);
+Motion npz_read(const std::string& path, const Skeleton& skeleton, SmplxBody* out_body) {
+  return npz_parse(read_file_bytes(path), path, skeleton, out_body);
 }
 
-std::string npz_format(const Motion& m, const std::string& name) {
+std::string npz_format(const Motion& m, const std::string& name, const SmplxBody& body, NpzFloats floats) {
   const Skeleton& sk = m.skeleton;
   // Exactly the SMPL-X joints: written in SMPL-X order, so body-model tools read them right.
   const bool smplx = sk.joint_count() == kSmplxJoints && has_smplx_names(sk);
   const std::vector<int> map = joint_mapping(sk, sk.joint_count());
   const auto frames = static_cast<std::uint64_t>(m.frame_count);
   const auto joints = static_cast<std::uint64_t>(map.size());
+  if (body.has_face() && body.expressions.size() != frames * static_cast<std::uint64_t>(body.expression_dims))
+    throw Error(name + ": the face has " +
+                std::to_string(body.expressions.size() / static_cast<std::size_t>(body.expression_dims)) +
+                " frames, the motion " + std::to_string(frames));
   std::vector<double> poses, trans;
   poses.reserve(frames * joints * 3);
   trans.reserve(frames * 3);
-  const glm::dvec3 root_offset = sk.joints.empty() ? glm::dvec3(0.0) : sk.joints[0].offset;
+  const glm::dvec3 root_rest = npz_root_rest(sk);
   for (int f = 0; f < m.frame_count; ++f) {
     for (int j : map) {
       const glm::dvec3 v = quat_to_expmap(m.rotation(f, j));
       poses.insert(poses.end(), {v.x, v.y, v.z});
     }
-    const glm::dvec3 t = m.translation(f, 0) - root_offset;
+    const glm::dvec3 t = m.translation(f, 0) - root_rest;
     trans.insert(trans.end(), {t.x, t.y, t.z});
   }
-  std::vector<ZipMember> members;
-  members.push_back({"poses.npy", npy_format("<f8", {frames, joints * 3}, poses)});
-  members.push_back({"trans.npy", npy_format("<f8", {frames, 3}, trans)});
+  const char* const small = floats == NpzFloats::Beat2 ? "<f4" : "<f8";  // BEAT2's poses and betas
   const bool whole = m.fps == std::round(m.fps) && m.fps < 2147483647.0;
-  members.push_back({"mocap_frame_rate.npy", npy_format(whole ? "<i4" : "<f8", {}, {m.fps})});
-  if (smplx) {
-    members.push_back({"betas.npy", npy_format("<f8", {kBeat2Betas}, std::vector<double>(kBeat2Betas, 0.0))});
-    members.push_back({"expressions.npy", npy_format("<f8", {frames, kBeat2Expressions},
-                                                     std::vector<double>(frames * kBeat2Expressions, 0.0))});
-    members.push_back({"gender.npy", npy_format_text("neutral")});
-    members.push_back({"model.npy", npy_format_text("smplx2020")});
+  ZipMember poses_npy{"poses.npy", npy_format(small, {frames, joints * 3}, poses)};
+  ZipMember trans_npy{"trans.npy", npy_format("<f8", {frames, 3}, trans)};
+  ZipMember fps_npy{"mocap_frame_rate.npy", npy_format(whole ? "<i4" : "<f8", {}, {m.fps})};
+  std::vector<ZipMember> members;
+  if (!smplx && body.betas.empty() && !body.has_face()) {
+    members = {std::move(poses_npy), std::move(trans_npy), std::move(fps_npy)};
+    return zip_format(members, name);
   }
+  const std::vector<double> betas = body.betas.empty() ? std::vector<double>(kBeat2Betas, 0.0) : body.betas;
+  const auto dims = static_cast<std::uint64_t>(body.has_face() ? body.expression_dims : kBeat2Expressions);
+  members.push_back({"betas.npy", npy_format(small, {betas.size()}, betas)});
+  members.push_back(std::move(poses_npy));
+  members.push_back(
+      {"expressions.npy", npy_format("<f8", {frames, dims},
+                                     body.has_face() ? body.expressions : std::vector<double>(frames * dims, 0.0))});
+  members.push_back(std::move(trans_npy));
+  members.push_back({"model.npy", npy_format_text(body.model.empty() ? "smplx2020" : body.model)});
+  members.push_back({"gender.npy", npy_format_text(body.gender.empty() ? "neutral" : body.gender)});
+  members.push_back(std::move(fps_npy));
   return zip_format(members, name);
 }
 
-void npz_write(const std::string& path, const Motion& m) {
+void npz_write(const std::string& path, const Motion& m, const SmplxBody& body, NpzFloats floats) {
   motion_check_finite(m, path);
-  const std::string bytes = npz_format(m, path);
+  const std::string bytes = npz_format(m, path, body, floats);
   write_file_atomically(
       path, [&](std::ostream& os) { os << bytes; }, true);
+}
+
+std::vector<double> read_betas_file(const std::string& path) {
+  const std::string bytes = read_file_bytes(path);
+  if (bytes.compare(0, 4, "PK\x03\x04") == 0 || ends_with_ci(path, ".npz")) {
+    const ZipReader zip(bytes, path);
+    if (!zip.has("betas.npy")) {
+      std::string list;
+      for (const std::string& n : zip.names()) list += (list.empty() ? "" : ", ") + n;
+      throw Error(path + ": no 'betas' array (the archive holds: " + (list.empty() ? std::string("nothing") : list) +
+                  ")");
+    }
+    return betas_of(member_array(zip, "betas", path), path + ": betas.npy");
+  }
+  return betas_of(npy_parse(bytes, path), path);
 }
 
 }  // namespace gmg

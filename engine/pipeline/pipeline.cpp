@@ -11,6 +11,7 @@
 #include "audio/audio_file.h"
 #include "audio/onset.h"
 #include "engine/assemble/blend.h"
+#include "engine/assemble/channels.h"
 #include "engine/assemble/resample.h"
 #include "engine/assemble/transitions.h"
 #include "engine/core/error.h"
@@ -74,11 +75,42 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
   return ev;
 }
 
+SpeechTimes speech_times_of(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                            const GraphParams& params) {
+  return times_of(audio::detect_onsets(sound, onset_params_of(params)), audio::energy_track(sound), sound.duration(),
+                  words, name);
+}
+
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
                            double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
-  const SpeechTimes t = times_of(audio::detect_onsets(sound, onset_params_of(params)), audio::energy_track(sound),
-                                 sound.duration(), words, name);
-  return speech_events_on_grid(t, fps, frame_count, lexicon);
+  return speech_events_on_grid(speech_times_of(sound, words, name, params), fps, frame_count, lexicon);
+}
+
+void check_audio_samples(const audio::Audio& sound, const std::string& name) {
+  if (sound.sample_rate < limits::kMinSampleRate || sound.sample_rate > limits::kMaxSampleRate)
+    throw Error(name + ": sample rate " + std::to_string(sound.sample_rate) + " Hz is outside the " +
+                std::to_string(limits::kMinSampleRate) + " to " + std::to_string(limits::kMaxSampleRate) +
+                " Hz gmg reads");
+  if (sound.samples.empty()) throw Error(name + ": the audio has no samples");
+  if (sound.duration() > limits::kMaxAudioSeconds)
+    throw Error(name + ": " + format_number(sound.duration()) + " s of audio is more than the " +
+                format_number(limits::kMaxAudioSeconds) + " s gmg reads");
+  for (std::size_t i = 0; i < sound.samples.size(); ++i)
+    if (!std::isfinite(sound.samples[i]))
+      throw Error(name + ": sample " + std::to_string(i) + " is not a finite number");
+}
+
+void check_words(std::vector<text::Word>& words, const std::string& name) {
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const text::Word& w = words[i];
+    if (!std::isfinite(w.start) || !std::isfinite(w.end) || w.start < 0 || w.end < w.start)
+      throw Error(name + ": word " + std::to_string(i + 1) + " ('" + w.text + "') has times " + format_number(w.start) +
+                  " to " + format_number(w.end) + " s; a word needs 0 <= start <= end, finite");
+    if (w.text.empty()) throw Error(name + ": word " + std::to_string(i + 1) + " is empty");
+  }
+  // The readers' order (text/transcript.h): by start time, ties in the given order.
+  std::stable_sort(words.begin(), words.end(),
+                   [](const text::Word& a, const text::Word& b) { return a.start < b.start; });
 }
 
 SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
@@ -101,23 +133,57 @@ SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_coun
 
 namespace {
 
-ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon) {
-  // The speech first: its audio (the larger of the two for long clips) is released before the
-  // motion is read. A motion that cannot be opened is still reported before the long analysis.
-  check_readable_file(c.motion);
-  if (!c.skeleton.empty()) check_readable_file(c.skeleton);
-  const SpeechTimes times = speech_times(c.speech, config.graph);
+// A reference clip's motion and analysed speech as the graph takes them: the motion cleaned up
+// (config.cleanup), the events on its frame grid.
+ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& config, const text::Lexicon& lexicon,
+                       const std::string& name) {
   ClipEvents in;
-  in.name = c.motion;
-  in.motion = motion_read(c.motion, c.skeleton);
+  in.name = name;
+  in.motion = std::move(motion);
   motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
-                         config.cleanup.smooth_order, c.motion);
+                         config.cleanup.smooth_order, name);
   const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);
   in.onset_frames = ev.onset_frames;
   in.keyword_frames = ev.keyword_frames;
   in.speech = ev.features.values;
   in.speech_dims = audio::SpeechFeatures::kDims;
   return in;
+}
+
+ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon,
+                          SmplxBody& out_body) {
+  // The speech first: its audio (the larger of the two for long clips) is released before the
+  // motion is read. A motion that cannot be opened is still reported before the long analysis.
+  check_readable_file(c.motion);
+  if (!c.skeleton.empty()) check_readable_file(c.skeleton);
+  const SpeechTimes times = speech_times(c.speech, config.graph);
+  return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion);
+}
+
+// The graph's body from its clips': the face when every clip has one of the same size (a face
+// for only some clips would leave the others' frames without one), the shape and labels of the
+// first clip that has them.
+SmplxBody join_bodies(std::vector<SmplxBody>& bodies) {
+  SmplxBody out;
+  if (bodies.empty()) return out;
+  const int dims = bodies.front().expression_dims;
+  bool faces = dims > 0;
+  for (const SmplxBody& b : bodies) faces = faces && b.expression_dims == dims;
+  if (faces) {
+    out.expression_dims = dims;
+    if (bodies.size() == 1) {
+      out.expressions = std::move(bodies.front().expressions);
+    } else {
+      for (const SmplxBody& b : bodies)
+        out.expressions.insert(out.expressions.end(), b.expressions.begin(), b.expressions.end());
+    }
+  }
+  for (const SmplxBody& b : bodies) {
+    if (out.betas.empty()) out.betas = b.betas;
+    if (out.gender.empty()) out.gender = b.gender;
+    if (out.model.empty()) out.model = b.model;
+  }
+  return out;
 }
 
 }  // namespace
@@ -127,6 +193,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs(clips.size());
+  std::vector<SmplxBody> bodies(clips.size());
   std::mutex m;
   long done = 0;
   // Clips are independent: read them on several threads, each into its own slot.
@@ -134,7 +201,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
     try {
       inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
-                                       [&] { return read_reference(clips[i], config, lexicon); });
+                                       [&] { return read_reference(clips[i], config, lexicon, bodies[i]); });
     } catch (...) {
       error = std::current_exception();
     }
@@ -145,8 +212,36 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     if (error) std::rethrow_exception(error);
   });
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
-  return naming_memory_errors(what, "building the graph",
-                              [&] { return graph_build(std::move(inputs), config.graph, progress); });
+  MotionGraph g = naming_memory_errors(what, "building the graph",
+                                       [&] { return graph_build(std::move(inputs), config.graph, progress); });
+  g.body = join_bodies(bodies);
+  return g;
+}
+
+MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Config& config) {
+  config_validate(config);
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  std::vector<ClipEvents> inputs;
+  std::vector<SmplxBody> bodies;
+  inputs.reserve(clips.size());
+  for (ReferenceClip& c : clips) {
+    check_audio_samples(c.sound, c.name);
+    if (c.has_words) check_words(c.words, c.name);
+    motion_check_finite(c.motion, c.name);
+    if (c.body.has_face() && c.body.expressions.size() != static_cast<std::size_t>(c.motion.frame_count) *
+                                                              static_cast<std::size_t>(c.body.expression_dims))
+      throw Error(c.name + ": the face does not have the motion's " + std::to_string(c.motion.frame_count) + " frames");
+    inputs.push_back(naming_memory_errors(c.name, "reading the reference clip", [&] {
+      const SpeechTimes times = speech_times_of(c.sound, c.has_words ? &c.words : nullptr, c.name, config.graph);
+      return clip_events(std::move(c.motion), times, config, lexicon, c.name);
+    }));
+    bodies.push_back(std::move(c.body));
+  }
+  const std::string what = clips.empty() ? std::string("graph") : clips.front().name;
+  MotionGraph g =
+      naming_memory_errors(what, "building the graph", [&] { return graph_build(std::move(inputs), config.graph); });
+  g.body = join_bodies(bodies);
+  return g;
 }
 
 void check_output_size(int frames, const Skeleton& skeleton, const std::string& name) {
@@ -171,19 +266,66 @@ BlendParams assembly_params(const Config& config) {
   return p;
 }
 
+namespace {
+
+std::vector<char> graph_continues(const MotionGraph& g) {
+  std::vector<char> continues(static_cast<std::size_t>(g.frame_count()));
+  for (int f = 0; f < g.frame_count(); ++f) continues[static_cast<std::size_t>(f)] = !(g.node(f).kinds & kBreakNode);
+  return continues;
+}
+
+std::vector<PathPiece> plan_pieces(const Plan& plan) {
+  std::vector<PathPiece> pieces;
+  pieces.reserve(plan.segments.size());
+  for (const PlannedSegment& s : plan.segments) pieces.push_back({s.path, s.sub.length});
+  return pieces;
+}
+
+}  // namespace
+
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
-  if (params.mode == BlendMode::Inertialize) {
-    std::vector<char> continues(static_cast<std::size_t>(g.frame_count()));
-    for (int f = 0; f < g.frame_count(); ++f) continues[static_cast<std::size_t>(f)] = !(g.node(f).kinds & kBreakNode);
-    std::vector<PathPiece> pieces;
-    pieces.reserve(plan.segments.size());
-    for (const PlannedSegment& s : plan.segments) pieces.push_back({s.path, s.sub.length});
-    return assemble_inertialized(g.motion, continues, pieces, params);
-  }
+  if (params.mode == BlendMode::Inertialize)
+    return assemble_inertialized(g.motion, graph_continues(g), plan_pieces(plan), params);
   std::vector<Motion> pieces;
   pieces.reserve(plan.segments.size());
   for (const PlannedSegment& s : plan.segments) pieces.push_back(resample_path(g.motion, s.path, s.sub.length));
   return blend_concatenate(pieces, params);
+}
+
+SmplxBody assemble_body(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
+  SmplxBody out;
+  out.betas = g.body.betas;
+  out.gender = g.body.gender;
+  out.model = g.body.model;
+  if (!g.body.has_face()) return out;
+  out.expression_dims = g.body.expression_dims;
+  out.expressions =
+      params.mode == BlendMode::Inertialize
+          ? assemble_channels_inertialized(g.body.expressions, g.body.expression_dims, graph_continues(g),
+                                           plan_pieces(plan), params.halflife_s * g.motion.fps)
+          : assemble_channels_blended(g.body.expressions, g.body.expression_dims, plan_pieces(plan), params);
+  return out;
+}
+
+nlohmann::ordered_json body_report(const Skeleton& skeleton, const SmplxBody& body, const std::string& betas_from) {
+  const bool face = body.has_face(), betas = !body.betas.empty();
+  if (!face && !betas && !has_smplx_names(skeleton)) return nullptr;
+  nlohmann::ordered_json j;
+  j["face"] = face ? "reference" : "none";
+  j["betas"] = betas ? betas_from : "none";
+  std::string note;
+  if (!face)
+    note = "the reference has no face (no SMPL-X .npz with expressions): an .npz output's expressions are zeros";
+  if (!betas)
+    note += std::string(note.empty() ? "" : "; ") +
+            "the reference has no body shape: an .npz output's betas are zeros (--betas FILE gives them)";
+  if (!note.empty()) j["note"] = note;
+  return j;
+}
+
+void reenactment_use_betas(Reenactment& r, std::vector<double> betas, const std::string& from) {
+  r.body.betas = std::move(betas);
+  r.report["body"] = body_report(r.motion.skeleton, r.body, from);
 }
 
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config) {
@@ -193,12 +335,28 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   Reenactment r;
   r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
   r.motion = assemble_motion(g, r.plan, assembly_params(config));
+  r.body = assemble_body(g, r.plan, assembly_params(config));
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
   r.report =
       reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());
+  if (nlohmann::ordered_json body = body_report(g.motion.skeleton, r.body); !body.is_null())
+    r.report["body"] = std::move(body);
   return r;
 }
+
+namespace {
+
+// The report of a whole reenactment: the tool and its inputs first, then reenact_events' report.
+void prepend_inputs(Reenactment& r, nlohmann::ordered_json inputs) {
+  nlohmann::ordered_json full;
+  full["tool"] = "gmg reenact";
+  full["inputs"] = std::move(inputs);
+  for (auto it = r.report.begin(); it != r.report.end(); ++it) full[it.key()] = it.value();
+  r.report = std::move(full);
+}
+
+}  // namespace
 
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
                     const std::string& graph_name) {
@@ -206,16 +364,27 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
   const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
   check_output_size(events.total_frames, g.motion.skeleton, speech.audio);
   Reenactment r = naming_memory_errors(speech.audio, "reenacting", [&] { return reenact_events(g, events, config); });
-  nlohmann::ordered_json inputs = {
-      {"graph", graph_name},
-      {"audio", speech.audio},
-      {"transcript",
-       speech.transcript.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(speech.transcript)}};
-  nlohmann::ordered_json full;
-  full["tool"] = "gmg reenact";
-  full["inputs"] = inputs;
-  for (auto it = r.report.begin(); it != r.report.end(); ++it) full[it.key()] = it.value();
-  r.report = std::move(full);
+  prepend_inputs(r, {{"graph", graph_name},
+                     {"audio", speech.audio},
+                     {"transcript", speech.transcript.empty() ? nlohmann::ordered_json(nullptr)
+                                                              : nlohmann::ordered_json(speech.transcript)}});
+  return r;
+}
+
+Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
+                          const Config& config, const std::string& name, const std::string& graph_name) {
+  check_audio_samples(sound, name);
+  std::vector<text::Word> sorted;
+  if (words) {
+    sorted = *words;
+    check_words(sorted, name);
+  }
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  const SpeechEvents events =
+      speech_events(sound, words ? &sorted : nullptr, name, g.motion.fps, -1, config.graph, lexicon);
+  check_output_size(events.total_frames, g.motion.skeleton, name);
+  Reenactment r = naming_memory_errors(name, "reenacting", [&] { return reenact_events(g, events, config); });
+  prepend_inputs(r, {{"graph", graph_name}, {"audio", name}, {"transcript", nullptr}});
   return r;
 }
 

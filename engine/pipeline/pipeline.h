@@ -63,6 +63,19 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params);
 // The events of analysed speech on a grid of `fps` (frame_count as for speech_analyse).
 SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int frame_count, const text::Lexicon& lexicon);
 
+// Analyses speech in memory (words may be null: no transcript); `name` labels errors.
+SpeechTimes speech_times_of(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
+                            const GraphParams& params);
+
+// Audio given in memory, checked as the readers check a file's: gmg::Error "name: ..." for a
+// sample rate outside engine/core/limits.h, no samples, more than a day, or a value that is not
+// finite.
+void check_audio_samples(const audio::Audio& sound, const std::string& name);
+
+// Words given in memory, checked as the transcript readers check a file's (finite times, 0 <=
+// start <= end, non-empty text) and sorted by start time as they sort them.
+void check_words(std::vector<text::Word>& words, const std::string& name);
+
 // Same as speech_analyse, from audio and words already in memory (words may be null: no
 // transcript). `name` labels errors (the transcript's file name).
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
@@ -82,8 +95,26 @@ struct ReferenceFiles {
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
                                    const BuildProgress& progress = {}, int jobs = 1);
 
+// A reference clip in memory (the Python module's arrays): analysed exactly as a clip of files.
+struct ReferenceClip {
+  std::string name;  // labels errors and the graph's clip table
+  Motion motion;
+  SmplxBody body{};  // the face must have the motion's frame count
+  audio::Audio sound;
+  std::vector<text::Word> words{};
+  bool has_words = false;  // false: no transcript
+};
+
+// graph_build_from_files for clips in memory (checked with check_audio_samples, check_words,
+// motion_check_finite), in the order given.
+MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Config& config);
+
 struct Reenactment {
   Motion motion;  // exactly events.total_frames frames, in the graph's skeleton
+  // The graph's SMPL-X body (shape, gender, model) with the face played along the motion: each
+  // output frame has the reference face of the source time it plays, blended through
+  // transitions like the motion (engine/assemble/channels.h); no face when the graph has none.
+  SmplxBody body;
   Plan plan;
   nlohmann::ordered_json report;
 };
@@ -98,6 +129,11 @@ void check_output_size(int frames, const Skeleton& skeleton, const std::string& 
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
                     const std::string& graph_name);
 
+// Same, from speech in memory (words may be null: no transcript; checked with
+// check_audio_samples and check_words). `name` labels errors and the report's audio.
+Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
+                          const Config& config, const std::string& name, const std::string& graph_name);
+
 // Same, from events already analysed.
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);
 
@@ -108,5 +144,19 @@ BlendParams assembly_params(const Config& config);
 // Paths of a plan joined into one motion: by source time with inertialized transitions
 // (BlendMode::Inertialize), or resampled to their target lengths and blended (Offset, Crossfade).
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params);
+
+// The graph's body along a plan: its shape and labels, and its face assembled as assemble_motion
+// assembles the motion (the same clock and transitions); no face when the graph has none.
+SmplxBody assemble_body(const MotionGraph& g, const Plan& plan, const BlendParams& params);
+
+// What a report says of an output's body, for an SMPL-X skeleton or a body (else null): {"face":
+// "reference" | "none", "betas": betas_from (when the body has betas) | "none", "note": what an
+// .npz output holds in place of what is missing}.
+nlohmann::ordered_json body_report(const Skeleton& skeleton, const SmplxBody& body,
+                                   const std::string& betas_from = "reference");
+
+// Gives the reenactment `betas` (e.g. read_betas_file of an .npz with `betas`, or an .npy) in
+// place of the graph's, and says in its report that they come from `from`.
+void reenactment_use_betas(Reenactment& r, std::vector<double> betas, const std::string& from);
 
 }  // namespace gmg

@@ -21,7 +21,10 @@ std::vector<int> path_frames(const nlohmann::json& s, const std::string& path) {
 }  // namespace
 
 ReportFacts read_report_facts(const std::string& path, double fps) {
-  const nlohmann::json rep = read_json_file(path);
+  return report_facts_of(read_json_file(path), fps, path);
+}
+
+ReportFacts report_facts_of(const nlohmann::json& rep, double fps, const std::string& path) {
   if (!rep.is_object() || !rep.contains("totals") || !rep["totals"].is_object() ||
       !rep["totals"].contains("failures") || !rep.contains("subsequences") || !rep["subsequences"].is_array())
     throw Error(path + ": not a gmg reenactment report (no totals.failures or subsequences)");

@@ -25,4 +25,7 @@ struct ReportFacts {
 // is not a reenactment report (no totals.failures or subsequences) or a subsequence is malformed.
 ReportFacts read_report_facts(const std::string& path, double fps);
 
+// The same for a report already in memory; `name` labels errors.
+ReportFacts report_facts_of(const nlohmann::json& report, double fps, const std::string& name);
+
 }  // namespace gmg

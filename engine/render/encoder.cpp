@@ -47,7 +47,12 @@ std::vector<std::string> ffmpeg_arguments(const EncoderSettings& s) {
                                 "-video_size", std::to_string(s.width) + "x" + std::to_string(s.height),
                                 "-framerate",  std::to_string(rate.num) + "/" + std::to_string(rate.den),
                                 "-i",          "pipe:0"};
-  if (!s.audio.empty()) a.insert(a.end(), {"-i", s.audio});
+  if (!s.audio.empty()) {
+    // Input options: the audio is cut, sample-accurately, to the video's range.
+    if (s.audio_from_s > 0) a.insert(a.end(), {"-ss", format_number(s.audio_from_s)});
+    if (s.audio_for_s >= 0) a.insert(a.end(), {"-t", format_number(s.audio_for_s)});
+    a.insert(a.end(), {"-i", s.audio});
+  }
   a.insert(a.end(), {"-map", "0:v:0"});
   if (!s.audio.empty()) a.insert(a.end(), {"-map", "1:a:0"});
   // passthrough: one output frame per input frame, whatever the muxer's defaults; no -shortest,

@@ -27,6 +27,8 @@ struct EncoderSettings {
   std::string output;         // the file ffmpeg writes (its extension picks the container)
   std::string name;           // the file as errors name it (the user's -o; output is its temporary twin)
   std::string audio;          // WAV muxed as AAC; "" = no audio stream
+  double audio_from_s = 0;    // the audio from this time on (a range of the motion) ...
+  double audio_for_s = -1;    // ... for this long; -1 = to its end
   int width = 0, height = 0;  // even
   double fps = 30;
   int crf = 20;                     // x264 quality: lower is better, 0 is lossless

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 
@@ -16,13 +18,38 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void check_output(const std::string& path) {
-  if (!ends_with_ci(path, ".mp4") && !ends_with_ci(path, ".mkv") && !ends_with_ci(path, ".mov"))
-    throw Error(path + ": the video must be a .mp4, .mkv or .mov file");
+void check_folder(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty() && !fs::is_directory(parent, ec))
     throw Error(path + ": the folder " + parent.string() + " does not exist");
+}
+
+void check_output(const std::string& path) {
+  if (!ends_with_ci(path, ".mp4") && !ends_with_ci(path, ".mkv") && !ends_with_ci(path, ".mov"))
+    throw Error(path + ": the video must be a .mp4, .mkv or .mov file" +
+                (ends_with_ci(path, ".png") ? std::string(" (a .png is one frame: --still SECONDS)") : ""));
+  check_folder(path);
+}
+
+// Frames [first, end) of the scene that options' range holds.
+struct FrameRange {
+  int first = 0, end = 0;
+};
+
+FrameRange frame_range(const Scene& scene, const RenderOptions& o, const std::string& motion) {
+  const double length_s = scene.frame_count / scene.fps;
+  if (!(o.from_s >= 0) || (o.to_s >= 0 && !(o.to_s > o.from_s)))
+    throw Error("--from " + format_number(o.from_s) + " --to " + format_number(o.to_s) +
+                ": the range must start at 0 s or later and end after it starts");
+  FrameRange r;
+  r.first = static_cast<int>(std::lround(std::min(o.from_s, length_s) * scene.fps));
+  r.end = o.to_s < 0 ? scene.frame_count : static_cast<int>(std::lround(std::min(o.to_s, length_s) * scene.fps));
+  if (r.first >= r.end)
+    throw Error(motion + ": the range " + format_number(o.from_s) + " s to " +
+                (o.to_s < 0 ? std::string("the end") : format_number(o.to_s) + " s") +
+                " holds no frame of the motion (" + format_number(length_s) + " s)");
+  return r;
 }
 
 // Throws once Ctrl-C or a TERM came (engine/core/interrupt.h): the job ends through the error
@@ -32,12 +59,12 @@ void check_interrupt(const std::string& output) {
 }
 
 // A signal after a successful finish() changes nothing: the video is complete.
-void encode(const Scene& scene, const EncoderSettings& settings) {
+void encode(const Scene& scene, const FrameRange& range, const EncoderSettings& settings) {
   check_interrupt(settings.name);
   VideoEncoder encoder(settings);
   Canvas canvas(scene.width, scene.height);
   try {
-    for (int f = 0; f < scene.frame_count; ++f) {
+    for (int f = range.first; f < range.end; ++f) {
       check_interrupt(settings.name);
       scene_draw(scene, f, canvas.context());
       encoder.write_frame(canvas.pixels(), canvas.stride());
@@ -68,25 +95,52 @@ RenderSummary render_video(const RenderInputs& in, const RenderOptions& options)
     throw Error(options.ffmpeg + ": not found" + (options.ffmpeg.find('/') == std::string::npos ? " on PATH" : "") +
                 ": gmg render encodes with the ffmpeg tool (Debian: apt-get install ffmpeg)");
   const Scene scene = scene_load(in, options);
+  const FrameRange range = frame_range(scene, options, in.motion);
 
   EncoderSettings e;
   e.ffmpeg = ffmpeg;
   e.output = temporary_twin(in.output);
   e.name = in.output;
   e.audio = in.audio;
+  if (range.first > 0 || range.end < scene.frame_count) {
+    e.audio_from_s = range.first / scene.fps;
+    e.audio_for_s = (range.end - range.first) / scene.fps;
+  }
   e.width = scene.width;
   e.height = scene.height;
   e.fps = scene.fps;
   e.crf = options.crf;
   e.preset = options.preset;
-  encode(scene, e);
+  encode(scene, range, e);
   rename_into_place(e.output, in.output);
   RenderSummary r;
-  r.frames = scene.frame_count;
+  r.frames = range.end - range.first;
   r.fps = scene.fps;
   r.width = scene.width;
   r.height = scene.height;
-  r.audio_s = scene.audio_s;
+  r.audio_s = scene.audio_s < 0 || e.audio_for_s < 0
+                  ? scene.audio_s
+                  : std::max(0.0, std::min(e.audio_for_s, scene.audio_s - e.audio_from_s));
+  r.notes = scene.notes;
+  return r;
+}
+
+RenderSummary render_still(const RenderInputs& in, const RenderOptions& options, double at_s) {
+  if (!ends_with_ci(in.output, ".png")) throw Error(in.output + ": a still frame is written as a .png file");
+  check_folder(in.output);
+  const Scene scene = scene_load(in, options);
+  const int frame = static_cast<int>(std::lround(at_s * scene.fps));
+  if (!(at_s >= 0) || frame >= scene.frame_count)
+    throw Error(in.motion + ": --still " + format_number(at_s) + " s is outside the motion (0 to " +
+                format_number((scene.frame_count - 1) / scene.fps) + " s)");
+  Canvas canvas(scene.width, scene.height);
+  scene_draw(scene, frame, canvas.context());
+  canvas.write_png(in.output);
+  RenderSummary r;
+  r.frames = 1;
+  r.fps = scene.fps;
+  r.width = scene.width;
+  r.height = scene.height;
   r.notes = scene.notes;
   return r;
 }

@@ -24,7 +24,14 @@ struct RenderSummary {
 };
 
 // gmg::Error "path: what" for a missing or invalid input, an output that is not .mp4, .mkv or
-// .mov or whose folder does not exist, no ffmpeg (options.ffmpeg not found), or ffmpeg failing.
+// .mov or whose folder does not exist, a range (options.from_s, to_s) that holds no frame of the
+// motion, no ffmpeg (options.ffmpeg not found), or ffmpeg failing. With a range the video has
+// exactly the range's frames and the audio is cut to it.
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options);
+
+// One frame, the one shown at `at_s` seconds (round(at_s fps)), as a PNG of the video's size
+// (in.output must end in .png); no ffmpeg is needed. gmg::Error as render_video, and for a time
+// outside the motion.
+RenderSummary render_still(const RenderInputs& in, const RenderOptions& options, double at_s);
 
 }  // namespace gmg::render

@@ -7,6 +7,7 @@
 #include "audio/audio_file.h"
 #include "audio/onset.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "engine/motion/motion_file.h"
 #include "engine/pipeline/report_facts.h"
@@ -69,9 +70,12 @@ void check_size(const RenderOptions& o) {
 void lay_out(const RenderOptions& o, Scene& s) {
   const double w = o.width, h = o.height;
   s.font_size = std::max(11.0, h * 0.036);
-  const double top = (s.show_markers ? h * 0.06 : 0.0) + s.font_size * 1.8;
+  s.show_strip = s.show_markers && o.overlay != Overlay::None;
+  s.show_badges = s.show_markers && o.overlay == Overlay::All;
+  s.show_labels = o.overlay != Overlay::None;
+  const double top = (s.show_strip ? h * 0.06 : 0.0) + (s.show_labels ? s.font_size * 1.8 : 0.0);
   const double bottom = s.captions.empty() ? 0.0 : h * 0.13;
-  s.strip = {0, 0, w * static_cast<double>(s.panels.size()), s.show_markers ? h * 0.06 : 0.0};
+  s.strip = {0, 0, w * static_cast<double>(s.panels.size()), s.show_strip ? h * 0.06 : 0.0};
   s.caption_area = {0, h - bottom, w * static_cast<double>(s.panels.size()), bottom};
   Box box;
   for (const Panel& p : s.panels) box.add(figure_box(p.figure));
@@ -98,11 +102,13 @@ void draw_background(Scene& s, const Box& box) {
     cairo_rectangle(cr, p.area.x, p.area.y, p.area.w, p.area.h);
     cairo_clip(cr);
     draw_floor(cr, p.camera, box, p.style.floor_y);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-    cairo_set_font_size(cr, s.font_size * 0.9);
-    cairo_set_source_rgb(cr, 0.25, 0.27, 0.3);
-    cairo_move_to(cr, p.area.x + 0.6 * s.font_size, s.strip.h + 1.3 * s.font_size);
-    cairo_show_text(cr, p.label.c_str());
+    if (s.show_labels) {
+      cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+      cairo_set_font_size(cr, s.font_size * 0.9);
+      cairo_set_source_rgb(cr, 0.25, 0.27, 0.3);
+      cairo_move_to(cr, p.area.x + 0.6 * s.font_size, s.strip.h + 1.3 * s.font_size);
+      cairo_show_text(cr, p.label.c_str());
+    }
     cairo_restore(cr);
     if (p.area.x > 0) {
       cairo_set_source_rgb(cr, 0.35, 0.36, 0.4);
@@ -180,8 +186,8 @@ void scene_draw(const Scene& s, int frame, cairo_t* cr) {
   }
   if (const Caption* c = caption_at(s.captions, t))
     draw_caption(cr, *c, t, s.caption_area, std::max(12.0, s.height * 0.05));
-  if (s.show_markers) {
-    draw_marker_strip(cr, s.markers, t, s.strip);
+  if (s.show_strip) draw_marker_strip(cr, s.markers, t, s.strip);
+  if (s.show_badges) {
     Rect badges = s.panels.front().area;
     badges.y = s.strip.h;
     draw_marker_badges(cr, s.markers, t, badges, s.font_size * 0.8);
@@ -194,6 +200,25 @@ Canvas::Canvas(int width, int height)
 Canvas::~Canvas() {
   cairo_destroy(cr_);
   cairo_surface_destroy(surface_);
+}
+
+void Canvas::write_png(const std::string& path) const {
+  cairo_surface_flush(surface_);
+  write_file_atomically(
+      path,
+      [&](std::ostream& os) {
+        const cairo_status_t status = cairo_surface_write_to_png_stream(
+            surface_,
+            [](void* closure, const unsigned char* data, unsigned int length) {
+              auto* out = static_cast<std::ostream*>(closure);
+              out->write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
+              return *out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+            },
+            &os);
+        if (status != CAIRO_STATUS_SUCCESS)
+          throw Error(path + ": cannot write the PNG (" + cairo_status_to_string(status) + ")");
+      },
+      true);
 }
 
 const unsigned char* Canvas::pixels() const {

@@ -2,12 +2,14 @@
 // its floor, captions, markers), and the drawing of one frame. render.h encodes the frames.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <cairo.h>
 
+#include "engine/core/enum_names.h"
 #include "engine/render/camera.h"
 #include "engine/render/figure.h"
 #include "engine/render/overlay.h"
@@ -27,8 +29,19 @@ struct RenderInputs {
   std::string output;   // the video (.mp4, .mkv or .mov)
 };
 
+// What is drawn over the figures: nothing (the figures on their floor, for a paper figure), the
+// event strip (with a --report) and the panels' labels, or also the badges that light up on each
+// event. Captions come with a transcript whatever the overlay.
+enum class Overlay : std::uint8_t { None, Strip, All };
+inline constexpr EnumName<Overlay> kOverlayNames[] = {
+    {Overlay::None, "none"}, {Overlay::Strip, "strip"}, {Overlay::All, "all"}};
+
 struct RenderOptions {
   View view = View::Front;
+  Overlay overlay = Overlay::All;
+  // The part of the motion drawn, in seconds: frames [round(from_s fps), round(to_s fps)); to_s < 0
+  // = to the end. The audio is cut to the same range; captions and markers keep their times.
+  double from_s = 0, to_s = -1;
   int width = 640, height = 480;  // pixels per figure; even, 160x120 to 3840x2160
   std::string ffmpeg = "ffmpeg";  // the tool, found on PATH unless it contains a '/'
   int crf = 20;                   // x264 quality: lower is better, 0 is lossless
@@ -52,7 +65,8 @@ struct Scene {
   std::vector<Caption> captions;
   Rect caption_area;
   double font_size = 16;
-  bool show_markers = false;
+  bool show_markers = false;                                         // a report was given: its events are known
+  bool show_strip = false, show_badges = false, show_labels = true;  // what the overlay draws
   Markers markers;
   Rect strip;
   std::shared_ptr<cairo_surface_t> background;  // sky, floors, labels
@@ -81,6 +95,8 @@ class Canvas {
   int stride() const { return cairo_image_surface_get_stride(surface_); }
   int width() const { return cairo_image_surface_get_width(surface_); }
   int height() const { return cairo_image_surface_get_height(surface_); }
+  // Writes the picture as a PNG, atomically (engine/core/files.h); gmg::Error naming the file.
+  void write_png(const std::string& path) const;
 
  private:
   cairo_surface_t* surface_;

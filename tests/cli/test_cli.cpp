@@ -12,8 +12,10 @@
 
 #include "engine/cli/cli.h"
 #include "engine/config/config.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/npz.h"
 #include "tests/cli/cli_run.h"
 #include "tests/test_support.h"
 #include "text/transcript.h"
@@ -32,7 +34,8 @@ TEST(Cli, EverySubcommandsHelpExitsZeroAndListsItsOptions) {
   const std::vector<std::pair<std::string, std::string>> commands = {
       {"build", "--motion"},    {"inspect", "--graphml"},     {"reenact", "--reference-motion"},
       {"evaluate", "--truth"},  {"batch", "--pool-manifest"}, {"ablation", "--folds"},
-      {"synth", "--no-motion"}, {"config", "--keys"}};
+      {"synth", "--no-motion"}, {"config", "--keys"},         {"convert", "--npz-dtype"},
+      {"render", "--still"}};
   for (const auto& [name, option] : commands) {
     const CliRun r = run({name, "--help"});
     EXPECT_EQ(r.code, 0) << name << ": " << r.err;
@@ -233,6 +236,71 @@ TEST_F(CliFieldInputs, AnNpzMotionWithItsSkeletonBuildsTheSameGraphAndReenactWri
   const CliRun e = run({"evaluate", "--generated", file("out.npz"), "--skeleton", file("clip.bvh"), "--json"});
   ASSERT_EQ(e.code, 0) << e.err;
   EXPECT_EQ(nlohmann::json::parse(e.out)["frames"], motion_read(file("out.npz"), file("clip.bvh")).frame_count);
+}
+
+TEST_F(CliFieldInputs, ConvertGoesBetweenBvhAndNpzExactlyAndRefusesWhatItCannotMean) {
+  // BVH -> npz (float64) -> BVH gives gmg's BVH back byte for byte.
+  const CliRun norm = run({"convert", file("clip.bvh"), file("norm.bvh")});
+  ASSERT_EQ(norm.code, 0) << norm.err;
+  EXPECT_TRUE(contains(norm.out, "wrote " + file("norm.bvh") + ": 360 frames at 30 fps, 22 joints")) << norm.out;
+  ASSERT_EQ(run({"convert", file("norm.bvh"), file("c.npz"), "--npz-dtype", "float64"}).code, 0);
+  const CliRun back = run({"convert", file("c.npz"), file("back.bvh"), "--skeleton", file("clip.bvh")});
+  ASSERT_EQ(back.code, 0) << back.err;
+  EXPECT_EQ(read_file_bytes(file("back.bvh")), read_file_bytes(file("norm.bvh")));
+  // Usage errors exit 2; an npz without a template, or an output that is the input, exit 1.
+  EXPECT_EQ(run({"convert", file("clip.bvh"), file("x.npz"), "--skeleton", file("clip.bvh")}).code, 2);
+  EXPECT_EQ(run({"convert", file("clip.bvh"), file("x.npz"), "--npz-dtype", "float16"}).code, 2);
+  EXPECT_EQ(run({"convert", file("clip.bvh")}).code, 2);
+  const CliRun no_template = run({"convert", file("c.npz"), file("x.bvh")});
+  EXPECT_EQ(no_template.code, 1);
+  EXPECT_TRUE(contains(no_template.err, "needs a skeleton template")) << no_template.err;
+  EXPECT_EQ(run({"convert", file("norm.bvh"), file("norm.bvh")}).code, 1);
+  EXPECT_FALSE(std::filesystem::exists(file("x.bvh")));
+}
+
+TEST_F(CliFieldInputs, ReenactBetasGiveTheNpzOutputItsShapeAndTheReportSaysWhere) {
+  // An .npy of betas (numpy.save's format 1.0, written here by hand: magic, version, header, data).
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string npy = std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(header.size()) + '\0' + header;
+  for (const double v : {0.5, -1.25, 2.0}) npy.append(reinterpret_cast<const char*>(&v), sizeof v);
+  testing::write_text(file("betas.npy"), npy);
+  const CliRun r =
+      run({"reenact", "--reference-motion", file("clip.bvh"), "--reference-audio", file("clip.wav"), "--audio",
+           file("clip.wav"), "--betas", file("betas.npy"), "-o", file("b.npz"), "--report", file("b.json")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string bytes = read_file_bytes(file("b.npz"));
+  EXPECT_EQ(read_betas_file(file("b.npz")), (std::vector<double>{0.5, -1.25, 2.0}));
+  const nlohmann::json report = nlohmann::json::parse(read_file_bytes(file("b.json")));
+  EXPECT_EQ(report["body"]["betas"], file("betas.npy"));
+  EXPECT_EQ(report["body"]["face"], "none");
+  // A betas file that cannot be read stops the command before any work, with no output.
+  const CliRun bad = run({"reenact", "--reference-motion", file("clip.bvh"), "--reference-audio", file("clip.wav"),
+                          "--audio", file("clip.wav"), "--betas", file("clip.wav"), "-o", file("no_betas.npz")});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_TRUE(contains(bad.err, file("clip.wav") + ": not a .npy array")) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(file("no_betas.npz")));
+}
+
+TEST_F(CliFieldInputs, AblationReadsAnNpzWithItsSkeleton) {
+  NpzFloats exact = NpzFloats::Float64;  // the same rotations as the BVH's, so the same table
+  npz_write(file("abl.npz"), motion_read(file("clip.bvh")), {}, exact);
+  const std::vector<std::string> rest = {
+      "--audio", file("clip.wav"), "--transcript", file("clip.tsv"), "--folds", "2", "--seeds",
+      "1",       "--set",          "l_npaths=20"};
+  std::vector<std::string> from_bvh = {"ablation", "--motion", file("clip.bvh")};
+  from_bvh.insert(from_bvh.end(), rest.begin(), rest.end());
+  std::vector<std::string> from_npz = {"ablation", "--motion", file("abl.npz"), "--skeleton", file("clip.bvh")};
+  from_npz.insert(from_npz.end(), rest.begin(), rest.end());
+  const CliRun a = run(from_bvh), b = run(from_npz);
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_EQ(b.out, a.out);
+  from_npz.erase(from_npz.begin() + 3, from_npz.begin() + 5);  // without --skeleton
+  const CliRun c = run(from_npz);
+  EXPECT_EQ(c.code, 1);
+  EXPECT_TRUE(contains(c.err, "needs a skeleton template")) << c.err;
 }
 
 TEST_F(CliFieldInputs, FlacAudioBuildsTheSameGraph) {

@@ -174,8 +174,8 @@ void csv_seeds(const fs::path& dir) {
 
 }  // namespace
 
-// Archives gmg writes for the two-joint skeleton (whole and fractional frame rate), and one
-// whose `poses` is cut short.
+// Archives gmg writes for the two-joint skeleton (whole and fractional frame rate; with a body:
+// betas, a face, gender and model), and one whose `poses` is cut short.
 void npz_seeds(const fs::path& dir) {
   gmg::Motion m = gmg::motion_rest(gmg::fuzz::two_joint_skeleton(), 30.0, 4);
   m.rotations[m.index(2, 1)] = glm::angleAxis(0.5, glm::dvec3(0, 0, 1));
@@ -184,6 +184,12 @@ void npz_seeds(const fs::path& dir) {
   m.fps = 29.97;
   put(dir, "ntsc.npz", gmg::npz_format(m, "seed.npz"));
   put(dir, "cut.npz", whole.substr(0, whole.size() / 2));
+  gmg::SmplxBody body;
+  body.betas = {0.5, -1.0};
+  body.expression_dims = 2;
+  body.expressions = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
+  body.gender = "female";
+  put(dir, "body.npz", gmg::npz_format(m, "seed.npz", body));
 }
 
 // Whisper (segments[].words[]) and WhisperX (with word_segments[] and an untimed word).

@@ -138,6 +138,63 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   EXPECT_EQ(a.onset_nodes, b.onset_nodes);
 }
 
+// Format 5 holds the SMPL-X body (shape and per-frame face) as its last section, empty for a graph
+// of BVH references: both load exactly, the payloads agree up to the body, and the face starts on a
+// page boundary like the other large arrays.
+TEST(GraphIo, TheBodyIsTheLastSectionOfVersion5) {
+  MotionGraph g = two_clip_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("plain.gmg"), g);
+  const std::string plain = read_file_bytes(dir.file("plain.gmg"));
+  EXPECT_EQ(plain[8], 5);
+  EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
+
+  g.body.expression_dims = 2;
+  for (int f = 0; f < g.frame_count(); ++f)
+    g.body.expressions.insert(g.body.expressions.end(), {0.5 * f + 0.25, -1.0 / (f + 1)});
+  g.body.betas = {1.25, -0.75, 3.0};
+  g.body.gender = "female";
+  g.body.model = "smplx2020";
+  graph_save(dir.file("body.gmg"), g);
+  const std::string bytes = read_file_bytes(dir.file("body.gmg"));
+  EXPECT_EQ(bytes[8], 5);
+  const MotionGraph h = graph_load(dir.file("body.gmg"));
+  EXPECT_EQ(h.body.expression_dims, 2);
+  EXPECT_EQ(h.body.expressions, g.body.expressions);
+  EXPECT_EQ(h.body.betas, g.body.betas);
+  EXPECT_EQ(h.body.gender, "female");
+  EXPECT_EQ(h.body.model, "smplx2020");
+
+  // After the header (magic, version, payload size: 20 bytes) the two files are the same bytes up
+  // to the body's first field, its u32 face coefficient count (0 without a body, 2 here).
+  std::size_t m = 20;
+  while (m < plain.size() && plain[m] == bytes[m]) ++m;
+  ASSERT_LT(m + 4, plain.size());
+  EXPECT_EQ(plain.compare(m, 4, std::string(4, '\0')), 0);
+  EXPECT_EQ(bytes.compare(m, 4, std::string("\x02\0\0\0", 4)), 0);
+  // Then the face's u64 value count, zero padding to the next 4096-byte boundary of the file, the
+  // face's doubles there; without a body: no values, then betas (u64 count), gender and model (u32
+  // lengths) and the u64 checksum.
+  const std::size_t face_at = (m + 4 + 8 + 4095) / 4096 * 4096;
+  const std::string face(reinterpret_cast<const char*>(g.body.expressions.data()),
+                         g.body.expressions.size() * sizeof(double));
+  EXPECT_EQ(bytes.find(face), face_at);
+  EXPECT_EQ(plain.size(), face_at + 8 + 4 + 4 + 8);
+  EXPECT_EQ(bytes.size(), face_at + face.size() + 8 + 3 * sizeof(double) + 4 + 6 + 4 + 9 + 8);
+
+  // A face that does not cover the frames is refused, even behind a valid checksum.
+  MotionGraph bad = g;
+  bad.body.expressions.pop_back();
+  graph_save(dir.file("bad.gmg"), bad);
+  try {
+    graph_load(dir.file("bad.gmg"));
+    ADD_FAILURE() << "a face shorter than the frames was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the face disagrees with frames x coefficients"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   const MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
@@ -163,6 +220,13 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   std::string version = bytes;
   version[8] = 9;
   expect_error(version, "version 9");
+  // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body) are refused
+  // before anything else is read, with the advice to rebuild them.
+  for (char old : {3, 4}) {
+    version[8] = old;
+    expect_error(version, std::string("graph file format version ") + char('0' + old) +
+                              ", this gmg reads version 5: rebuild it with 'gmg build'");
+  }
 }
 
 TEST(GraphIo, ExportsDotAndGraphml) {

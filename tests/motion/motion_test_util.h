@@ -4,6 +4,11 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <functional>
+#include <vector>
+
+#include "engine/motion/motion.h"
+#include "engine/motion/npz.h"
 
 namespace gmg::testing {
 
@@ -26,6 +31,32 @@ inline Eigen::Matrix3d axis_matrix(int axis, double a) {
   if (axis == 1) m << c, 0, s, 0, 1, 0, -s, 0, c;
   if (axis == 2) m << c, -s, 0, s, c, 0, 0, 0, 1;
   return m;
+}
+
+// An SMPL-X skeleton in a BVH's depth-first order (not SMPL-X's): the 55 joints with SMPL-X's
+// parents, written children-first as a BVH exporter walks them; ROOT OFFSET 0 (BEAT2's BVH).
+inline Skeleton smplx_depth_first() {
+  const int parents[55] = {-1, 0,  0,  0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  9,  9,  12, 13, 14, 16,
+                           17, 18, 19, 15, 15, 15, 20, 25, 26, 20, 28, 29, 20, 31, 32, 20, 34, 35, 20,
+                           37, 38, 21, 40, 41, 21, 43, 44, 21, 46, 47, 21, 49, 50, 21, 52, 53};
+  Skeleton sk;
+  std::vector<int> new_index(55, -1);
+  std::function<void(int)> visit = [&](int k) {
+    Joint j;
+    j.name = smplx_joint_names()[static_cast<std::size_t>(k)];
+    j.parent = parents[k] < 0 ? -1 : new_index[static_cast<std::size_t>(parents[k])];
+    j.offset = parents[k] < 0 ? glm::dvec3(0.0) : glm::dvec3(0.01 * k, 0.1, 0.0);
+    j.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
+    if (parents[k] < 0)
+      j.channels.insert(j.channels.begin(), {Channel::Xposition, Channel::Yposition, Channel::Zposition});
+    j.rotation_order = rotation_order_from_channels(j.channels);
+    new_index[static_cast<std::size_t>(k)] = sk.joint_count();
+    sk.joints.push_back(j);
+    for (int c = 0; c < 55; ++c)
+      if (parents[c] == k) visit(c);
+  };
+  visit(0);
+  return sk;
 }
 
 }  // namespace gmg::testing

@@ -2,6 +2,7 @@
 // layer, SMPL-X archives on a template skeleton (hand-worked poses, the root offset, the joint
 // mapping by name), round trips, errors naming the archive and the array, and the shared BEAT2
 // recording read from its .npz with its BVH as template.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +29,7 @@ namespace {
 using testing::error_of;
 using testing::kChainBvh;
 using testing::replace_once;
+using testing::smplx_depth_first;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -231,8 +233,10 @@ TEST(Npz, TheRootTranslationIsTransPlusTheTemplatesRootOffsetAndWritingSubtracts
 }
 
 TEST(Npz, ABvhNpzBvhRoundTripKeepsEveryRotation) {
-  // The chain's frames, then 40 random frames: rotations within 1e-6 rad after npz, and after
-  // the BVH written from the npz and read back (6 decimals of degrees).
+  // The chain's frames, then 40 random frames: with float64 arrays the rotations come back to
+  // 1e-12, with BEAT2's float32 poses to float32's rounding (half an ulp of pi is 1.2e-7 rad per
+  // axis-angle component), and after the BVH written from the npz and read back within 1e-6 rad
+  // (6 decimals of degrees).
   Motion a = bvh_parse(kChainBvh, "chain.bvh");
   Motion big = motion_rest(a.skeleton, 30.0, 40);
   std::mt19937 rng(7);
@@ -241,44 +245,21 @@ TEST(Npz, ABvhNpzBvhRoundTripKeepsEveryRotation) {
     big.rotations[i] = expmap_to_quat(glm::dvec3(u(rng), u(rng), u(rng)) * 0.5);
   for (int f = 0; f < big.frame_count; ++f) big.translations[big.index(f, 0)] = glm::dvec3(u(rng), u(rng), u(rng));
   for (const Motion* m : {&a, &big}) {
-    const Motion b = npz_parse(npz_format(*m, "r.npz"), "r.npz", m->skeleton);
+    const Motion b = npz_parse(npz_format(*m, "r.npz", {}, NpzFloats::Float64), "r.npz", m->skeleton);
+    const Motion b32 = npz_parse(npz_format(*m, "r.npz"), "r.npz", m->skeleton);
     const Motion c = bvh_parse(bvh_format(b), "r.bvh");
     ASSERT_EQ(c.frame_count, m->frame_count);
     for (std::size_t i = 0; i < m->rotations.size(); ++i) {
       EXPECT_LT(quat_distance(m->rotations[i], b.rotations[i]), 1e-12) << i;
+      EXPECT_LT(rotation_angle_between(m->rotations[i], b32.rotations[i]), 3e-7) << i;
       EXPECT_LT(rotation_angle_between(m->rotations[i], c.rotations[i]), 1e-6) << i;
       EXPECT_LT(glm::length(m->translations[i] - c.translations[i]), 1e-6) << i;
+      EXPECT_EQ(m->translations[i], b32.translations[i]) << i;  // trans is float64 in BEAT2 too
     }
   }
 }
 
-// An SMPL-X skeleton in a BVH's depth-first order (not SMPL-X's): the 55 joints with SMPL-X's
-// parents, written children-first as a BVH exporter walks them.
-Skeleton smplx_depth_first() {
-  const int parents[55] = {-1, 0,  0,  0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  9,  9,  12, 13, 14, 16,
-                           17, 18, 19, 15, 15, 15, 20, 25, 26, 20, 28, 29, 20, 31, 32, 20, 34, 35, 20,
-                           37, 38, 21, 40, 41, 21, 43, 44, 21, 46, 47, 21, 49, 50, 21, 52, 53};
-  Skeleton sk;
-  std::vector<int> new_index(55, -1);
-  std::function<void(int)> visit = [&](int k) {
-    Joint j;
-    j.name = smplx_joint_names()[k];
-    j.parent = parents[k] < 0 ? -1 : new_index[parents[k]];
-    j.offset = parents[k] < 0 ? glm::dvec3(0.0) : glm::dvec3(0.01 * k, 0.1, 0.0);
-    j.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
-    if (parents[k] < 0)
-      j.channels.insert(j.channels.begin(), {Channel::Xposition, Channel::Yposition, Channel::Zposition});
-    j.rotation_order = rotation_order_from_channels(j.channels);
-    new_index[k] = sk.joint_count();
-    sk.joints.push_back(j);
-    for (int c = 0; c < 55; ++c)
-      if (parents[c] == k) visit(c);
-  };
-  visit(0);
-  return sk;
-}
-
-TEST(Npz, SmplxJointsAreMappedByNameAndWrittenInSmplxOrder) {
+TEST(Npz, SmplxJointsAreMappedByNameAndWrittenInSmplxOrderWithBeat2sArrays) {
   const Skeleton sk = smplx_depth_first();
   ASSERT_EQ(sk.joint_count(), 55);
   ASSERT_EQ(sk.joints[2].name, "left_knee");  // depth-first: pelvis, left_hip, left_knee, ...
@@ -287,21 +268,129 @@ TEST(Npz, SmplxJointsAreMappedByNameAndWrittenInSmplxOrder) {
   m.rotations[m.index(0, sk.find("right_thumb3"))] = expmap_to_quat(glm::dvec3(0, 0, -0.2));
   const std::string bytes = npz_format(m, "s.npz");
   const ZipReader zip(bytes, "s.npz");
-  const std::vector<double> poses = npy_parse(zip.read("poses.npy"), "p").values;
+  const NpyArray poses_array = npy_parse(zip.read("poses.npy"), "p");
+  EXPECT_EQ(poses_array.dtype, "<f4");  // as BEAT2 ships poses
+  const std::vector<double>& poses = poses_array.values;
   ASSERT_EQ(poses.size(), 165u);
   // SMPL-X order: left_knee is joint 4 (values 12..14), right_thumb3 the last (162..164).
-  EXPECT_NEAR(poses[12], 0.3, 1e-15);
-  EXPECT_NEAR(poses[164], -0.2, 1e-15);
+  EXPECT_EQ(poses[12], static_cast<double>(0.3f));
+  EXPECT_EQ(poses[164], static_cast<double>(-0.2f));
   EXPECT_EQ(poses[6], 0.0);  // joint 2, right_hip, is at rest
-  // BEAT2's other arrays, so tools that load them run.
-  for (const char* key : {"betas.npy", "expressions.npy", "gender.npy", "model.npy", "mocap_frame_rate.npy"})
-    EXPECT_TRUE(zip.has(key)) << key;
-  EXPECT_EQ(npy_parse(zip.read("betas.npy"), "b").values, std::vector<double>(300, 0.0));
+  // BEAT2's arrays in BEAT2's order and dtypes, so tools that load them run.
+  EXPECT_EQ(zip.names(), (std::vector<std::string>{"betas.npy", "poses.npy", "expressions.npy", "trans.npy",
+                                                   "model.npy", "gender.npy", "mocap_frame_rate.npy"}));
+  const NpyArray betas = npy_parse(zip.read("betas.npy"), "b");
+  EXPECT_EQ(betas.dtype, "<f4");
+  EXPECT_EQ(betas.values, std::vector<double>(300, 0.0));
+  const NpyArray expressions = npy_parse(zip.read("expressions.npy"), "e");
+  EXPECT_EQ(expressions.dtype, "<f8");
+  EXPECT_EQ(expressions.shape, (std::vector<std::uint64_t>{1, 100}));
+  EXPECT_EQ(npy_parse(zip.read("trans.npy"), "t").dtype, "<f8");
   EXPECT_EQ(npy_parse(zip.read("mocap_frame_rate.npy"), "f").dtype, "<i4");
+  EXPECT_EQ(npy_parse_text(zip.read("gender.npy"), "g"), "neutral");
+  EXPECT_EQ(npy_parse_text(zip.read("model.npy"), "m"), "smplx2020");
   // And read back by name onto the depth-first skeleton.
   const Motion back = npz_parse(bytes, "s.npz", sk);
   for (std::size_t i = 0; i < m.rotations.size(); ++i)
-    EXPECT_LT(quat_distance(m.rotations[i], back.rotations[i]), 1e-12) << sk.joints[i].name;
+    EXPECT_LT(rotation_angle_between(m.rotations[i], back.rotations[i]), 3e-7) << sk.joints[i].name;
+}
+
+TEST(Npz, ASmplxSkeletonWithAZeroRootOffsetPutsBeat2sPelvisRestBetweenTransAndTheRoot) {
+  // BEAT2's BVH convention: ROOT OFFSET 0, root channels = trans + the pelvis rest position.
+  const Skeleton sk = smplx_depth_first();
+  ASSERT_EQ(sk.joints[0].offset, glm::dvec3(0.0));
+  EXPECT_EQ(npz_root_rest(sk), glm::dvec3(0.002777, -0.383289, 0.010682));
+  std::vector<double> zeros(165, 0.0);
+  const std::string npz = archive({{"poses.npy", f8("(1, 165)", zeros)},
+                                   {"trans.npy", f8("(1, 3)", {1, 2, 3})},
+                                   {"mocap_frame_rate.npy", fps30()}});
+  const Motion m = npz_parse(npz, "one.npz", sk);
+  EXPECT_EQ(m.translation(0, 0), glm::dvec3(1, 2, 3) + glm::dvec3(0.002777, -0.383289, 0.010682));
+  const std::string bytes = npz_format(m, "w.npz");
+  const ZipReader written(bytes, "w.npz");
+  const std::vector<double> trans = npy_parse(written.read("trans.npy"), "t").values;
+  ASSERT_EQ(trans.size(), 3u);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(trans[static_cast<std::size_t>(c)], c + 1.0, 1e-15);
+  // Another skeleton with a zero ROOT OFFSET keeps trans as the root's translation.
+  const Skeleton chain = bvh_parse(kChainBvh, "chain.bvh").skeleton;
+  EXPECT_EQ(npz_root_rest(chain), chain.joints[0].offset);
+}
+
+TEST(Npz, TheBodyIsReadAndWrittenBackAndItsArraysAreChecked) {
+  const Skeleton sk = smplx_depth_first();
+  std::vector<double> expressions(8), betas = {0.5, -2.25, 1.0};
+  for (std::size_t i = 0; i < expressions.size(); ++i) expressions[i] = 0.1 * static_cast<double>(i) - 0.3;
+  std::string utf32;
+  for (char c : std::string("male")) utf32 += std::string(1, c) + std::string(3, '\0');
+  const std::string gender = npy_by_hand("{'descr': '<U4', 'fortran_order': False, 'shape': (), }", utf32);
+  auto npz = [&](const std::string& expr, const std::string& bet) {
+    return archive({{"betas.npy", bet},
+                    {"poses.npy", f8("(2, 165)", std::vector<double>(330, 0.0))},
+                    {"expressions.npy", expr},
+                    {"trans.npy", f8("(2, 3)", std::vector<double>(6, 0.0))},
+                    {"gender.npy", gender},
+                    {"mocap_frame_rate.npy", fps30()}});
+  };
+  SmplxBody body;
+  const Motion m = npz_parse(npz(f8("(2, 4)", expressions), f8("(3,)", betas)), "b.npz", sk, &body);
+  EXPECT_EQ(body.betas, betas);
+  EXPECT_EQ(body.expression_dims, 4);
+  EXPECT_EQ(body.expressions, expressions);
+  EXPECT_EQ(body.gender, "male");
+  EXPECT_EQ(body.model, "");
+  // Written back: the same face (float64, exact), shape (float32) and gender.
+  const std::string bytes = npz_format(m, "w.npz", body);
+  SmplxBody again;
+  npz_parse(bytes, "w.npz", sk, &again);
+  EXPECT_EQ(again.expressions, expressions);
+  EXPECT_EQ(again.betas, (std::vector<double>{0.5, -2.25, 1.0}));  // exact in float32
+  EXPECT_EQ(again.gender, "male");
+  EXPECT_EQ(again.model, "smplx2020");
+  // A face of another length than the poses, or a value that is not finite, names the array.
+  EXPECT_TRUE(contains(
+      error_of([&] { npz_parse(npz(f8("(3, 4)", std::vector<double>(12)), f8("(3,)", betas)), "b.npz", sk, &body); }),
+      "b.npz: expressions.npy: expected shape (2, coefficients) to match poses, found (3, 4)"));
+  std::vector<double> bad = betas;
+  bad[1] = std::nan("");
+  EXPECT_TRUE(
+      contains(error_of([&] { npz_parse(npz(f8("(2, 4)", expressions), f8("(3,)", bad)), "b.npz", sk, &body); }),
+               "b.npz: betas.npy: the value at frame 0, column 1 is not finite"));
+  // Without out_body the body is not looked at: a motion reader that needs no face reads on.
+  EXPECT_NO_THROW(npz_parse(npz(f8("(3, 4)", std::vector<double>(12)), f8("(3,)", betas)), "b.npz", sk));
+  // A face that does not fit the motion is refused when writing.
+  SmplxBody wrong = body;
+  wrong.expressions.resize(4);
+  EXPECT_TRUE(contains(error_of([&] { npz_format(m, "w.npz", wrong); }), "w.npz: the face has 1 frames, the motion 2"));
+}
+
+TEST(Npz, BetasComeFromAnArchiveOrAnNpyFile) {
+  testing::TempDir dir;
+  const std::vector<double> betas = {1.5, -0.5};
+  testing::write_text(dir.file("b.npy"), f8("(2,)", betas));
+  testing::write_text(dir.file("row.npy"), f8("(1, 2)", betas));
+  testing::write_text(dir.file("b.npz"), archive({{"betas.npy", f8("(2,)", betas)}, {"x.npy", fps30()}}));
+  testing::write_text(dir.file("none.npz"), archive({{"x.npy", fps30()}}));
+  EXPECT_EQ(read_betas_file(dir.file("b.npy")), betas);
+  EXPECT_EQ(read_betas_file(dir.file("row.npy")), betas);
+  EXPECT_EQ(read_betas_file(dir.file("b.npz")), betas);
+  EXPECT_TRUE(contains(error_of([&] { read_betas_file(dir.file("none.npz")); }),
+                       dir.file("none.npz") + ": no 'betas' array (the archive holds: x.npy)"));
+  testing::write_text(dir.file("m.npy"), f8("(2, 2)", {1, 2, 3, 4}));
+  EXPECT_TRUE(contains(error_of([&] { read_betas_file(dir.file("m.npy")); }),
+                       "expected shape (betas,) or (1, betas), found (2, 2)"));
+}
+
+TEST(Npy, TextArraysAndFloat32AreReadAndWrittenAsNumpyDoes) {
+  EXPECT_EQ(npy_parse_text(npy_format_text("smplx2020"), "m"), "smplx2020");
+  // numpy pads a shorter text in a wider dtype with NULs.
+  std::string padded;
+  for (char c : std::string("ab")) padded += std::string(1, c) + std::string(3, '\0');
+  padded += std::string(8, '\0');
+  EXPECT_EQ(npy_parse_text(npy_by_hand("{'descr': '<U4', 'fortran_order': False, 'shape': (), }", padded), "t"), "ab");
+  EXPECT_TRUE(contains(error_of([&] { npy_parse_text(f8("()", {1.0}), "t"); }), "t: expected text"));
+  const std::string f4 = npy_format("<f4", {3}, {0.1, 2, -3});
+  EXPECT_EQ(f4, npy_by_hand("{'descr': '<f4', 'fortran_order': False, 'shape': (3,), }", raw<float>({0.1f, 2, -3})));
+  EXPECT_TRUE(contains(error_of([&] { npy_format("<f4", {1}, {1e300}); }), "exceeds float32"));
 }
 
 TEST(Npz, ShapesThatDoNotFitTheTemplateAndBadValuesAreErrorsNamingTheArray) {
@@ -368,25 +457,43 @@ TEST(Npz, SharedBeat2NpzWithItsBvhAsTemplateGivesTheBvhsJointPositions) {
   GMG_REQUIRE_SHARED_DATA();
   const std::string dir = testing::shared_data_dir() + "/beat2_scott/";
   const Motion bvh = bvh_read(dir + "2_scott_0_1_1.bvh");
-  const Motion npz = motion_read(dir + "2_scott_0_1_1.npz", dir + "2_scott_0_1_1.bvh");
+  SmplxBody body;
+  const Motion npz = motion_read(dir + "2_scott_0_1_1.npz", dir + "2_scott_0_1_1.bvh", &body);
   ASSERT_EQ(npz.frame_count, bvh.frame_count);
   EXPECT_EQ(npz.fps, 30.0);
-  const Eigen::MatrixXd pb = motion_forward_kinematics(bvh), pn = motion_forward_kinematics(npz);
-  // The BVH's root channels are trans + the pelvis's rest position; its ROOT OFFSET is 0, so the
-  // npz read on it sits lower by exactly that constant (data README), for every joint and frame.
-  const Eigen::RowVector3d pelvis_rest(0.002777, -0.383289, 0.010682);
-  Eigen::MatrixXd shifted = pn;
-  for (Eigen::Index j = 0; j < npz.joint_count(); ++j) shifted.middleCols(3 * j, 3).rowwise() += pelvis_rest;
-  // The BVH rounds angles to 1e-6 degrees and positions to 1e-6 m; poses are float32.
-  EXPECT_LT(max_abs_diff(shifted, pb), 1e-5);
-  EXPECT_GT(max_abs_diff(pn, pb), 0.38);
-  // A template whose ROOT OFFSET is the pelvis's rest position gives the world positions as they are.
-  testing::TempDir tmp;
-  const std::string templ = tmp.file("template.bvh");
-  testing::write_text(templ, replace_once(read_file_bytes(dir + "2_scott_0_1_1.bvh"),
-                                          "OFFSET 0.000000 0.000000 0.000000", "OFFSET 0.002777 -0.383289 0.010682"));
-  const Motion exact = motion_read(dir + "2_scott_0_1_1.npz", templ);
-  EXPECT_LT(max_abs_diff(motion_forward_kinematics(exact), pb), 1e-5);
+  // The BVH's root channels are trans + the pelvis's rest position (data README) and its ROOT
+  // OFFSET is 0: the npz read on it puts the pelvis rest back, so every joint of every frame is
+  // where the BVH has it. The BVH rounds angles to 1e-6 degrees and positions to 1e-6 m; poses
+  // are float32.
+  EXPECT_LT(max_abs_diff(motion_forward_kinematics(npz), motion_forward_kinematics(bvh)), 1e-5);
+  // Its body: BEAT2's 300 betas and 100 expression coefficients a frame.
+  ASSERT_EQ(body.betas.size(), 300u);
+  EXPECT_NEAR(*std::min_element(body.betas.begin(), body.betas.end()), -2.5227702, 1e-6);
+  EXPECT_EQ(body.expression_dims, 100);
+  EXPECT_EQ(body.expressions.size(), 1906u * 100u);
+  EXPECT_EQ(body.gender, "neutral");
+  EXPECT_EQ(body.model, "smplx2020");
+
+  // Written back, from the npz or from the BVH: the file's trans (BEAT2's convention, whichever
+  // way the motion came), its poses to float32 and its body exactly.
+  const std::string original = read_file_bytes(dir + "2_scott_0_1_1.npz");
+  const ZipReader zo(original, "original");
+  const NpyArray trans = npy_parse(zo.read("trans.npy"), "t"), poses = npy_parse(zo.read("poses.npy"), "p");
+  for (const Motion* m : {&npz, &bvh}) {
+    const std::string bytes = npz_format(*m, "w.npz", m == &npz ? body : SmplxBody{});
+    const ZipReader zw(bytes, "w.npz");
+    const NpyArray t = npy_parse(zw.read("trans.npy"), "t"), p = npy_parse(zw.read("poses.npy"), "p");
+    ASSERT_EQ(t.values.size(), trans.values.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < t.values.size(); ++i) worst = std::max(worst, std::abs(t.values[i] - trans.values[i]));
+    EXPECT_LT(worst, m == &npz ? 1e-12 : 1e-6) << (m == &npz ? "from the npz" : "from the BVH");
+    if (m == &npz) {
+      // float32 -> double rotation -> float32: the same floats.
+      EXPECT_EQ(p.values, poses.values);
+      EXPECT_EQ(npy_parse(zw.read("expressions.npy"), "e").values, npy_parse(zo.read("expressions.npy"), "e").values);
+      EXPECT_EQ(npy_parse(zw.read("betas.npy"), "b").values, npy_parse(zo.read("betas.npy"), "b").values);
+    }
+  }
 }
 
 }  // namespace

@@ -1,15 +1,22 @@
 // The reenactment pipeline end to end: determinism, reports, bad inputs, real recordings.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <iostream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "audio/audio_file.h"
+#include "engine/assemble/timeline.h"
 #include "engine/cli/cli.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/motion/bvh.h"
+#include "engine/motion/motion_file.h"
+#include "engine/motion/npy.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/synth/synth.h"
 #include "graph/graph_io.h"
@@ -235,6 +242,159 @@ TEST(PipelineRealData, ReenactedScottIsAsNaturalAsTheCapture) {
       EXPECT_LT(n.step_share, 0.005) << test << " seed " << seed;
       EXPECT_NEAR(n.root_speed_ratio, 1.0, 0.25) << test << " seed " << seed;
     }
+  }
+}
+
+// ---- speech in memory and BEAT2 .npz that keeps the speaker ----
+
+// The arrays path (the Python module's) is the files path: a graph built from the clip in memory
+// and a reenactment of speech in memory give the motion the files give.
+TEST_F(SynthPipeline, ClipsAndSpeechInMemoryGiveWhatTheirFilesGive) {
+  const Config cfg;
+  const MotionGraph from_files = graph_build_from_files({{file("ref.bvh"), {file("ref.wav"), file("ref.tsv")}}}, cfg);
+  ReferenceClip clip;
+  clip.name = file("ref.bvh");
+  clip.motion = bvh_read(file("ref.bvh"));
+  clip.sound = audio::read_audio(file("ref.wav"));
+  clip.words = text::read_transcript(file("ref.tsv"));
+  clip.has_words = true;
+  const MotionGraph from_memory = graph_build_from_clips({clip}, cfg);
+  ASSERT_EQ(from_memory.frame_count(), from_files.frame_count());
+  EXPECT_EQ(from_memory.speech, from_files.speech);
+  EXPECT_EQ(boost::num_edges(from_memory.graph), boost::num_edges(from_files.graph));
+  const Reenactment a = reenact(from_files, {file("test.wav"), file("test.tsv")}, cfg, "g");
+  const std::vector<text::Word> words = text::read_transcript(file("test.tsv"));
+  const Reenactment b = reenact_audio(from_memory, audio::read_audio(file("test.wav")), &words, cfg, "new", "g");
+  EXPECT_EQ(bvh_format(b.motion), bvh_format(a.motion));
+  // Bad arrays are refused with the readers' kind of message.
+  audio::Audio silent;
+  silent.sample_rate = 100;
+  silent.samples.assign(10, 0.0f);
+  EXPECT_THROW(reenact_audio(from_memory, silent, nullptr, cfg, "new", "g"), Error);
+  std::vector<text::Word> backwards = {{2.0, 1.0, "no"}};
+  EXPECT_THROW(reenact_audio(from_memory, audio::read_audio(file("test.wav")), &backwards, cfg, "new", "g"), Error);
+}
+
+// The sample at source time t of frame-major values with `dims` per frame (linear between frames,
+// as the assembly reads a continuous stretch).
+double value_at(const std::vector<double>& v, int dims, double t, int c) {
+  const auto f = static_cast<std::size_t>(std::floor(t));
+  const double a = t - std::floor(t);
+  const double x = v[f * static_cast<std::size_t>(dims) + static_cast<std::size_t>(c)];
+  if (a == 0.0) return x;
+  return (1.0 - a) * x + a * v[(f + 1) * static_cast<std::size_t>(dims) + static_cast<std::size_t>(c)];
+}
+
+double median_of(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+TEST(PipelineRealData, Beat2NpzOutputKeepsTransBetasAndTheFaceWhicheverWayTheGraphWasBuilt) {
+  GMG_REQUIRE_SHARED_DATA();
+  const std::string d = gmg::testing::shared_data_dir() + "/beat2_scott/";
+  const std::string bvh = d + "2_scott_0_1_1.bvh", npz = d + "2_scott_0_1_1.npz";
+  Config cfg;
+  cfg.seed = 7;
+  const MotionGraph from_bvh =
+      graph_build_from_files({{bvh, {d + "2_scott_0_1_1.wav", d + "2_scott_0_1_1.TextGrid"}}}, cfg);
+  const MotionGraph from_npz =
+      graph_build_from_files({{npz, {d + "2_scott_0_1_1.wav", d + "2_scott_0_1_1.TextGrid"}, bvh}}, cfg);
+  EXPECT_FALSE(from_bvh.body.has_face());
+  ASSERT_TRUE(from_npz.body.has_face());
+  // The original file's arrays.
+  const std::string original = read_file_bytes(npz);
+  const ZipReader zo(original, npz);
+  std::vector<double> trans_y;
+  const NpyArray trans = npy_parse(zo.read("trans.npy"), "t");
+  for (std::size_t i = 1; i < trans.values.size(); i += 3) trans_y.push_back(trans.values[i]);
+  const NpyArray expressions = npy_parse(zo.read("expressions.npy"), "e");
+
+  gmg::testing::TempDir tmp;
+  for (const MotionGraph* g : {&from_bvh, &from_npz}) {
+    const std::string which = g == &from_bvh ? "built from the BVH" : "built from the npz";
+    const Reenactment r = reenact(*g, {d + "2_scott_0_2_2.wav", d + "2_scott_0_2_2.TextGrid"}, cfg, "g");
+    const std::string out = tmp.file("out.npz");
+    motion_write(out, r.motion, r.body);
+    const std::string written = read_file_bytes(out);
+    const ZipReader zw(written, out);
+    // BEAT2's keys, in its order, with its dtypes and shapes (frames aside).
+    EXPECT_EQ(zw.names(), zo.names()) << which;
+    for (const std::string key : {"betas.npy", "poses.npy", "expressions.npy", "trans.npy", "mocap_frame_rate.npy"}) {
+      const NpyArray a = npy_parse(zo.read(key), key), b = npy_parse(zw.read(key), key);
+      EXPECT_EQ(b.dtype, a.dtype) << which << " " << key;
+      ASSERT_EQ(b.shape.size(), a.shape.size()) << which << " " << key;
+      for (std::size_t k = key == "betas.npy" || key == "mocap_frame_rate.npy" ? 0 : 1; k < a.shape.size(); ++k)
+        EXPECT_EQ(b.shape[k], a.shape[k]) << which << " " << key;
+    }
+    // trans in BEAT2's convention: its median height within 1 cm of the real file's.
+    const NpyArray t = npy_parse(zw.read("trans.npy"), "t");
+    std::vector<double> y;
+    for (std::size_t i = 1; i < t.values.size(); i += 3) y.push_back(t.values[i]);
+    EXPECT_NEAR(median_of(y), median_of(trans_y), 0.01) << which;
+    const NpyArray betas = npy_parse(zw.read("betas.npy"), "b");
+    const nlohmann::ordered_json& body = r.report["body"];
+    if (g == &from_bvh) {
+      EXPECT_EQ(betas.values, std::vector<double>(300, 0.0));
+      EXPECT_EQ(body["face"], "none");
+      EXPECT_NE(body["note"].get<std::string>().find("the reference has no face"), std::string::npos);
+      continue;
+    }
+    EXPECT_EQ(betas.values, npy_parse(zo.read("betas.npy"), "b").values);
+    EXPECT_EQ(body["face"], "reference");
+    EXPECT_EQ(body["betas"], "reference");
+    // The face follows the motion: each output frame has the face of the source time it plays.
+    // Before the first transition exactly; later, once a transition's offset has decayed.
+    const NpyArray e = npy_parse(zw.read("expressions.npy"), "e");
+    std::vector<char> continues(static_cast<std::size_t>(g->frame_count()));
+    for (int f = 0; f < g->frame_count(); ++f)
+      continues[static_cast<std::size_t>(f)] = !(g->node(f).kinds & kBreakNode);
+    std::vector<PathPiece> pieces;
+    for (const PlannedSegment& s : r.plan.segments) pieces.push_back({s.path, s.sub.length});
+    const std::vector<SourceClock> clock = source_timeline(pieces, continues);
+    ASSERT_EQ(clock.size(), static_cast<std::size_t>(r.motion.frame_count));
+    // A transition's offset decays on the spring of transition_halflife: after 15 half-lives it
+    // is below 1e-6 of the coefficients' range, after 4 below a tenth.
+    const double halflife_frames = cfg.blend.halflife_s * g->motion.fps;
+    int since = 0, first_run = 0, settled = 0;
+    bool transition_seen = false;
+    std::vector<double> error, shifted;
+    for (std::size_t i = 0; i < clock.size(); ++i) {
+      if (i > 0 && clock[i].run != clock[i - 1].run) {
+        since = 0;
+        transition_seen = true;
+      }
+      ++since;
+      double worst = 0;
+      for (int c = 0; c < 100; ++c)
+        worst = std::max(worst, std::abs(e.values[i * 100 + static_cast<std::size_t>(c)] -
+                                         value_at(expressions.values, 100, clock[i].time, c)));
+      const double later = clock[i].time + 30.0;
+      if (later < g->frame_count() - 1 && (!transition_seen || since > 4 * halflife_frames)) {
+        double away = 0;
+        for (int c = 0; c < 100; ++c)
+          away = std::max(away, std::abs(e.values[i * 100 + static_cast<std::size_t>(c)] -
+                                         value_at(expressions.values, 100, later, c)));
+        error.push_back(worst);
+        shifted.push_back(away);
+      }
+      if (!transition_seen) {
+        EXPECT_LT(worst, 1e-12) << "frame " << i;
+        ++first_run;
+      } else if (since > 15 * halflife_frames) {
+        EXPECT_LT(worst, 1e-6) << "frame " << i;
+        ++settled;
+      }
+    }
+    EXPECT_GT(first_run + settled, 0);
+    ASSERT_FALSE(error.empty());
+    // Wherever a transition's offset has mostly decayed (4 half-lives on), the face is nearer the
+    // one it plays than the face a second later by far.
+    EXPECT_LT(median_of(error), 0.25);
+    EXPECT_GT(median_of(shifted), 5 * median_of(error));
+    std::cout << "[ info ] face: " << first_run << " frames before the first transition, " << settled << " settled, "
+              << error.size() << " decayed: median largest coefficient error " << median_of(error) << ", "
+              << median_of(shifted) << " a second later\n";
   }
 }
 

@@ -18,6 +18,7 @@
 #include <csignal>
 #include <thread>
 
+#include <cairo.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -30,6 +31,7 @@
 #include "engine/render/render.h"
 #include "engine/synth/synth.h"
 #include "tests/cli/cli_run.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
 extern char** environ;
@@ -40,6 +42,7 @@ namespace {
 namespace fs = std::filesystem;
 using render::RenderInputs;
 using render::RenderOptions;
+using testing::error_of;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -378,6 +381,133 @@ TEST_F(RenderVideo, TheJunctionBadgeLightsJustAfterAJunctionOnly) {
   EXPECT_GT(badge_red(31), 50);  // 0.03 s after the junction
   EXPECT_EQ(badge_red(20), 0);
   EXPECT_EQ(badge_red(40), 0);  // 0.33 s after: off again
+}
+
+// ---- a time range, a still frame, the overlay ------------------------------------------------
+
+TEST_F(RenderVideo, ARangeHasExactlyItsFramesTheFullVideosPixelsAndItsPartOfTheAudio) {
+  GMG_REQUIRE_FFMPEG();
+  write_tone(dir.file("tone.wav"), 32000, 16000);  // 2 s, as long as the motion
+  RenderOptions lossless = small();
+  lossless.crf = 0;
+  RenderInputs full = inputs("full.mp4");
+  render::render_video(full, lossless);
+  RenderInputs in = inputs("range.mp4");
+  in.audio = dir.file("tone.wav");
+  RenderOptions o = lossless;
+  o.from_s = 0.5;
+  o.to_s = 1.5;
+  const render::RenderSummary r = render::render_video(in, o);
+  EXPECT_EQ(r.frames, 30);
+  const nlohmann::json p = probe(in.output);
+  const auto video = streams_of(p, "video"), sound = streams_of(p, "audio");
+  ASSERT_EQ(video.size(), 1u);
+  ASSERT_EQ(sound.size(), 1u);
+  EXPECT_EQ(video[0]["nb_read_frames"], "30");
+  EXPECT_NEAR(std::stod(sound[0]["duration"].get<std::string>()), 1.0, 1.0 / 30);
+  // Frame k of the range is frame 15 + k of the whole video.
+  const std::vector<std::string> all = decode_frames(full.output, 320, 240), part = decode_frames(in.output, 320, 240);
+  ASSERT_EQ(all.size(), 60u);
+  ASSERT_EQ(part.size(), 30u);
+  for (std::size_t k : {0u, 14u, 29u}) EXPECT_EQ(differing_pixels(part[k], all[15 + k], 3, 2), 0) << k;
+  EXPECT_GT(differing_pixels(part[0], all[0], 3), 100);
+  // --to past the end stops at the end; a range after the end holds nothing and writes nothing.
+  o.from_s = 1.0;
+  o.to_s = 9.0;
+  EXPECT_EQ(render::render_video(inputs("tail.mp4"), o).frames, 30);
+  o.from_s = 5.0;
+  o.to_s = -1;
+  EXPECT_TRUE(contains(error_of([&] { render::render_video(inputs("none.mp4"), o); }), "holds no frame of the motion"));
+  EXPECT_FALSE(fs::exists(dir.file("none.mp4")));
+}
+
+// The pixels of a PNG as Cairo draws them (native 32-bit words), and its size.
+std::string png_pixels(const std::string& path, int& width, int& height) {
+  cairo_surface_t* png = cairo_image_surface_create_from_png(path.c_str());
+  std::string out;
+  width = height = 0;
+  if (cairo_surface_status(png) == CAIRO_STATUS_SUCCESS) {
+    width = cairo_image_surface_get_width(png);
+    height = cairo_image_surface_get_height(png);
+    render::Canvas canvas(width, height);
+    cairo_set_source_surface(canvas.context(), png, 0, 0);
+    cairo_set_operator(canvas.context(), CAIRO_OPERATOR_SOURCE);
+    cairo_paint(canvas.context());
+    out.assign(reinterpret_cast<const char*>(canvas.pixels()), static_cast<std::size_t>(canvas.stride()) * height);
+  }
+  cairo_surface_destroy(png);
+  return out;
+}
+
+TEST_F(RenderVideo, AStillIsOnePngOfTheVideosSizeShowingTheFrameAtItsTime) {
+  const render::Scene scene = render::scene_load(inputs("x.mp4"), small());
+  for (const double t : {0.2, 1.0}) {
+    RenderInputs in = inputs("still.png");
+    const render::RenderSummary r = render::render_still(in, small(), t);
+    EXPECT_EQ(r.frames, 1);
+    int w = 0, h = 0;
+    const std::string pixels = png_pixels(in.output, w, h);
+    EXPECT_EQ(w, 320);
+    EXPECT_EQ(h, 240);
+    // Exactly the frame the video shows at t (frame round(t * 30)).
+    EXPECT_EQ(pixels, draw(scene, static_cast<int>(std::lround(t * 30)))) << t;
+    fs::rename(in.output, dir.file("still_" + std::to_string(static_cast<int>(t * 10)) + ".png"));
+  }
+  int w = 0, h = 0;
+  EXPECT_GT(differing_pixels(png_pixels(dir.file("still_2.png"), w, h), png_pixels(dir.file("still_10.png"), w, h), 4),
+            100);
+  // Outside the motion, or not a .png: an error and no file.
+  EXPECT_TRUE(contains(error_of([&] { render::render_still(inputs("late.png"), small(), 2.5); }),
+                       "--still 2.5 s is outside the motion"));
+  EXPECT_TRUE(contains(error_of([&] { render::render_still(inputs("still.mp4"), small(), 1.0); }),
+                       "a still frame is written as a .png file"));
+  EXPECT_FALSE(fs::exists(dir.file("late.png")));
+  EXPECT_FALSE(fs::exists(dir.file("still.mp4")));
+}
+
+TEST_F(RenderVideo, TheOverlayShowsStripAndBadgesOnlyTheStripOrNothing) {
+  // Graph frames 0..29 then 100..129: one junction at output frame 30 (1.0 s).
+  gmg::testing::write_text(dir.file("report.json"), R"({"frames": 60, "totals": {"failures": 0},
+    "subsequences": [{"start_frame": 0, "target_length": 30, "graph_ranges": [[0, 29]]},
+                     {"start_frame": 30, "target_length": 30, "graph_ranges": [[100, 129]]}]})");
+  RenderInputs with_report = inputs("x.mp4");
+  with_report.report = dir.file("report.json");
+  auto scene = [&](render::Overlay overlay, bool report) {
+    RenderOptions o = small();
+    o.overlay = overlay;
+    return render::scene_load(report ? with_report : inputs("x.mp4"), o);
+  };
+  const int stride = 320 * 4;
+  const std::string all = draw(scene(render::Overlay::All, true), 31);
+  const std::string strip = draw(scene(render::Overlay::Strip, true), 31);
+  const std::string none = draw(scene(render::Overlay::None, true), 31);
+  EXPECT_GT(red_pixels(all, stride, 160, 20, 320, 60), 50);  // the junction badge
+  EXPECT_EQ(red_pixels(strip, stride, 160, 20, 320, 60), 0);
+  EXPECT_GT(red_pixels(strip, stride, 0, 0, 320, 15), 0);  // the strip's junction tick
+  EXPECT_EQ(red_pixels(none, stride, 0, 0, 320, 240), 0);
+  // Nothing at all: the report changes no pixel, and the motion's file name is not written.
+  EXPECT_EQ(none, draw(scene(render::Overlay::None, false), 31));
+  EXPECT_NE(draw(scene(render::Overlay::All, false), 31), draw(scene(render::Overlay::None, false), 31));
+}
+
+TEST_F(RenderVideo, RangeStillAndOverlayOptionsOfTheCommand) {
+  const CliRun bad =
+      run_cli({"render", dir.file("clip.bvh"), "--still", "1", "--from", "0.5", "-o", dir.file("s.png")});
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "--still draws one frame"));
+  EXPECT_EQ(run_cli({"render", dir.file("clip.bvh"), "--overlay", "some", "-o", dir.file("v.mp4")}).code, 2);
+  const CliRun backwards =
+      run_cli({"render", dir.file("clip.bvh"), "--from", "1", "--to", "0.5", "-o", dir.file("v.mp4")});
+  EXPECT_EQ(backwards.code, 2) << backwards.err;
+  const CliRun still =
+      run_cli({"render", dir.file("clip.bvh"), "--still", "0.5", "--overlay", "none", "-o", dir.file("s.png")});
+  EXPECT_EQ(still.code, 0) << still.err;
+  EXPECT_TRUE(contains(still.out, "the frame at 0.5 s, 320x240") || contains(still.out, "the frame at 0.5 s, 640x480"))
+      << still.out;
+  EXPECT_TRUE(fs::exists(dir.file("s.png")));
+  const CliRun png = run_cli({"render", dir.file("clip.bvh"), "-o", dir.file("v.png")});
+  EXPECT_EQ(png.code, 1);
+  EXPECT_TRUE(contains(png.err, "a .png is one frame: --still SECONDS")) << png.err;
 }
 
 TEST(RenderCaptions, WordsGroupIntoCaptionsAtPausesAndTheCurrentOneIsFound) {
