@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -66,10 +67,67 @@ TEST(AudioFile, UnreadableAndUndecodableFilesNameTheFile) {
             dir.file("gone.flac") + ": cannot open (No such file or directory)");
   EXPECT_EQ(error_of([&] { gmg::audio::read_audio(dir.path().string()); }),
             dir.path().string() + ": is a folder, not a file");
-  gmg::testing::write_text(dir.file("words.flac"), "0\t1\thello\n");
-  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("words.flac")); });
-  EXPECT_EQ(msg.rfind(dir.file("words.flac") + ": cannot decode as audio", 0), 0u) << msg;
+  // Binary that is no known format: the decoder's reason, on one line.
+  gmg::testing::write_text(dir.file("noise.flac"), std::string("\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0e", 10));
+  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("noise.flac")); });
+  EXPECT_EQ(msg.rfind(dir.file("noise.flac") + ": cannot decode as audio", 0), 0u) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
+
+// What a file holds decides how it is read, and a file that is not audio says what it is instead
+// of how a WAV or the decoder fails on it.
+TEST(AudioFile, FilesThatAreNotAudioSayWhatTheyAre) {
+  TempDir dir;
+  const auto refused = [&](const std::string& name, const std::string& bytes) {
+    gmg::testing::write_text(dir.file(name), bytes);
+    return error_of([&] { gmg::audio::read_audio(dir.file(name)); });
+  };
+  const std::string hint = " (give the speech as WAV, FLAC, MP3, OGG, M4A, ...)";
+  EXPECT_EQ(refused("words.wav", "0\t1\thello\n"), dir.file("words.wav") + ": is not audio: it is a text file" + hint);
+  EXPECT_EQ(refused("words.flac", "0\t1\thello\n"),
+            dir.file("words.flac") + ": is not audio: it is a text file" + hint);
+  EXPECT_EQ(refused("take.wav", "HIERARCHY\nROOT hips\n"),
+            dir.file("take.wav") + ": is not audio: it is a BVH motion file" + hint);
+  EXPECT_EQ(refused("ref.mp3", "GMGRAPH\0\x03\0\0\0"),
+            dir.file("ref.mp3") + ": is not audio: it is a gmg graph file" + hint);
+  EXPECT_EQ(refused("t.wav", "{\"segments\": []}"), dir.file("t.wav") + ": is not audio: it is JSON text" + hint);
+  EXPECT_EQ(refused("empty.mp3", ""), dir.file("empty.mp3") + ": is empty (0 bytes), not audio");
+  // Bytes that say nothing, named .wav: the WAV reader's own byte-precise error.
+  const std::string raw = refused("raw.wav", std::string("\x01\x00\x02\x00\x03\x00\x04\x00\x05\x00\x06\x00", 12));
+  EXPECT_EQ(raw.rfind(dir.file("raw.wav") + ": byte 0: ", 0), 0u) << raw;
+}
+
+TEST(AudioFile, SniffingNamesTheFormats) {
+  using gmg::audio::sniff_content;
+  EXPECT_EQ(sniff_content(std::string("RIFF\x24\0\0\0WAVEfmt ", 16)).name, "a WAV file");
+  EXPECT_TRUE(sniff_content("fLaC\0\0\0\x22").audio);
+  EXPECT_EQ(sniff_content("ID3\x04").name, "an MP3 file");
+  EXPECT_EQ(sniff_content("\xFF\xFB\x90\x64").name, "an MP3 file");
+  EXPECT_EQ(sniff_content("\xFF\xF1\x50\x80").name, "an AAC (ADTS) file");
+  EXPECT_EQ(sniff_content(std::string("\0\0\0\x20"
+                                      "ftypM4A ",
+                                      12))
+                .name,
+            "an MP4/M4A file");
+  EXPECT_EQ(sniff_content("OggS\0\x02").name, "an Ogg file");
+  EXPECT_EQ(sniff_content("\xEF\xBB\xBFHIERARCHY\r\n").name, "a BVH motion file");
+  EXPECT_EQ(sniff_content("PK\x03\x04").name, "a ZIP archive (an .npz?)");
+  EXPECT_EQ(sniff_content("File type = \"ooTextFile\"").name, "a Praat TextGrid");
+  EXPECT_EQ(sniff_content("\x01\x02\x03\x04").name, "");
+  EXPECT_FALSE(sniff_content("hello").audio);
+}
+
+TEST(AudioFile, AnMp3NamedWavIsDecodedWithAWarning) {
+  if (!have_ffmpeg()) GTEST_SKIP() << "the ffmpeg tool is absent";
+  TempDir dir;
+  gmg::audio::write_wav_pcm16(dir.file("t.wav"), tone(44100));
+  ffmpeg(dir.file("t.wav"), dir.file("t.mp3"), "-b:a 128k");
+  std::filesystem::rename(dir.file("t.mp3"), dir.file("really_mp3.wav"));
+  std::vector<std::string> warnings;
+  const Audio a = gmg::audio::read_audio(dir.file("really_mp3.wav"), &warnings);
+  EXPECT_NEAR(a.duration(), 2.0, 0.1);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], dir.file("really_mp3.wav") + ": is an MP3 file, not a WAV; decoded as such");
 }
 
 TEST(AudioFile, FlacStereoAndMonoGiveTheWavsSamplesExactly) {
