@@ -37,7 +37,10 @@ Motion motion_read(const std::string& path, const std::string& skeleton_template
   return npz_read(path, bvh_read(skeleton_template).skeleton);
 }
 
+const std::vector<std::string> kMotionWriteExtensions = {".bvh", ".npz"};
+
 void motion_write(const std::string& path, const Motion& m) {
+  check_output_file({"", path}, kMotionWriteExtensions);
   if (is_npz_path(path))
     npz_write(path, m);
   else

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/motion/motion.h"
 
@@ -17,7 +18,13 @@ bool is_npz_path(const std::string& path);
 // npz_read, plus "path: ... needs a skeleton template" and the template's own.
 Motion motion_read(const std::string& path, const std::string& skeleton_template = "");
 
-// Writes m as .npz when `path` ends in .npz, else as BVH (both atomically).
+// The motion formats motion_write writes, by extension: {".bvh", ".npz"}.
+extern const std::vector<std::string> kMotionWriteExtensions;
+
+// Writes m as .npz when `path` ends in .npz, as BVH when it ends in .bvh (both atomically; ASCII
+// case-insensitive). Any other extension is a gmg::Error naming the path, so BVH text never
+// lands in "out.txt" or "x.fbx" (check_output_file with kMotionWriteExtensions refuses it
+// before any work).
 void motion_write(const std::string& path, const Motion& m);
 
 }  // namespace gmg
