@@ -1,6 +1,11 @@
 #include "engine/evaluate/evaluate_files.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "audio/audio_file.h"
+#include "audio/speech_check.h"
+#include "audio/speech_energy.h"
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
 #include "engine/evaluate/plot.h"
@@ -25,6 +30,26 @@ std::vector<Motion> read_reference(const std::string& path, const std::string& s
   return clips;
 }
 
+// The speech of `path`, refused when it cannot be speech (unless allowed); a warning when it and
+// the motion `motion_name` of `motion_s` seconds differ by more than a second (motion_s < 0: no
+// such warning, for the mismatched speech of --other-audio).
+audio::Audio read_speech(const std::string& path, bool allow_silence, const std::string& motion_name, double motion_s,
+                         std::vector<std::string>& warnings) {
+  audio::Audio sound = audio::read_audio(path, &warnings);
+  if (!allow_silence) {
+    const std::string problem = audio::speech_level_problem(sound.duration(), audio::energy_track(sound));
+    if (!problem.empty()) throw Error(audio::speech_refusal(path, problem, warnings));
+  }
+  if (motion_s >= 0 && std::abs(sound.duration() - motion_s) > kMaxEvaluateDurationMismatchS) {
+    char text[128];
+    std::snprintf(text, sizeof text, ": lasts %.1f s but the motion ", sound.duration());
+    char tail[128];
+    std::snprintf(tail, sizeof tail, " lasts %.1f s: the sync metrics compare them from their starts", motion_s);
+    warnings.push_back(path + text + motion_name + tail);
+  }
+  return sound;
+}
+
 }  // namespace
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
@@ -42,10 +67,12 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
       longer = motion_slice(longer, 0, keep);
     }
   }
+  const double generated_s = generated.fps > 0 ? generated.frame_count / generated.fps : 0.0;
   audio::Audio sound;
-  if (!in.audio.empty()) sound = audio::read_audio(in.audio);
+  if (!in.audio.empty()) sound = read_speech(in.audio, in.allow_silence, in.generated, generated_s, result.warnings);
   std::vector<audio::Audio> others;
-  for (const std::string& path : in.other_audio) others.push_back(audio::read_audio(path));
+  for (const std::string& path : in.other_audio)  // mismatched by design: its length is no mistake
+    others.push_back(read_speech(path, in.allow_silence, in.generated, -1.0, result.warnings));
   const std::vector<Motion> reference =
       in.reference.empty() ? std::vector<Motion>() : read_reference(in.reference, in.skeleton);
   ReportFacts facts;

@@ -21,11 +21,19 @@ struct EvaluateInputs {
   std::string reference;                 // the reference capture: a BVH or a graph (.gmg); "" = none
   bool trim = false;  // cut the longer of generated and truth to the shorter (a warning says by how much)
   std::string plot;   // write a picture (.png or .svg); "" = none
+  // Take speech that cannot be speech as it is (audio/speech_check.h: shorter than 0.5 s or
+  // silent); false: an error naming the file.
+  bool allow_silence = false;
 };
+
+// Speech and motion durations further apart than this get a warning naming both (the sync
+// metrics compare them from their starts).
+inline constexpr double kMaxEvaluateDurationMismatchS = 1.0;
 
 struct EvaluateResult {
   nlohmann::ordered_json json;
-  std::vector<std::string> warnings;  // for standard error, e.g. what --trim cut
+  std::vector<std::string> warnings;  // for standard error, each naming its file: what --trim cut, decoder
+                                      // damage, speech and motion of different lengths
 };
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options);

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <random>
 
 #include "audio/audio_file.h"
 #include "audio/onset.h"
+#include "audio/speech_check.h"
 #include "engine/assemble/blend.h"
 #include "engine/assemble/resample.h"
 #include "engine/assemble/transitions.h"
@@ -65,6 +67,7 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
   if (ev.total_frames < 1) throw Error(times.name + ": audio is shorter than one motion frame");
   ev.onset_frames = audio::onset_motion_frames(times.onsets, fps, ev.total_frames);
   ev.features = audio::speech_features(times.energy, times.onsets.envelope, fps, ev.total_frames);
+  ev.warnings = times.warnings;
   if (times.has_words) {
     ev.words = static_cast<int>(times.words.size());
     for (const text::KeywordFrame& k :
@@ -82,16 +85,30 @@ SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Wo
 }
 
 SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
-  audio::Audio sound = audio::read_audio(files.audio);
+  std::vector<std::string> warnings;
+  audio::Audio sound = audio::read_audio(files.audio, &warnings);
   const double duration_s = sound.duration();
+  audio::EnergyTrack energy = audio::energy_track(sound);
+  // Before the long onset analysis: silence or a click of audio fails at once.
+  if (!files.allow_silence) {
+    const std::string problem = audio::speech_level_problem(duration_s, energy);
+    if (!problem.empty()) throw Error(audio::speech_refusal(files.audio, problem, warnings));
+  }
   std::vector<text::Word> words;
   if (!files.transcript.empty()) words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
   const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
   // Checked before the long onset analysis: a transcript of another recording fails at once.
   if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
-  audio::EnergyTrack energy = audio::energy_track(sound);
   audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
-  return times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
+  if (!files.allow_silence) {
+    const std::string problem =
+        audio::speech_onset_problem(duration_s, onsets.onset_frames.size(), params.min_onset_strength);
+    if (!problem.empty()) throw Error(audio::speech_refusal(files.audio, problem, warnings));
+  }
+  SpeechTimes t =
+      times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
+  t.warnings = std::move(warnings);
+  return t;
 }
 
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
@@ -101,7 +118,15 @@ SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_coun
 
 namespace {
 
-ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon) {
+// "62.0 s": durations as a user compares them.
+std::string seconds_text(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", s);
+  return text;
+}
+
+ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon,
+                          std::vector<std::string>& out_warnings) {
   // The speech first: its audio (the larger of the two for long clips) is released before the
   // motion is read. A motion that cannot be opened is still reported before the long analysis.
   check_readable_file(c.motion);
@@ -113,6 +138,13 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
   motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                          config.cleanup.smooth_order, c.motion);
   const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);
+  out_warnings = ev.warnings;
+  const double motion_s = in.motion.frame_count / in.motion.fps;
+  if (std::abs(motion_s - times.duration_s) > kMaxReferenceDurationMismatchS)
+    out_warnings.push_back(c.speech.audio + ": lasts " + seconds_text(times.duration_s) + " but its motion " +
+                           c.motion + " lasts " + seconds_text(motion_s) + " (" +
+                           seconds_text(std::abs(motion_s - times.duration_s)) +
+                           " apart): both are read from their starts, so check they are one recording");
   in.onset_frames = ev.onset_frames;
   in.keyword_frames = ev.keyword_frames;
   in.speech = ev.features.values;
@@ -123,10 +155,11 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
 }  // namespace
 
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
-                                   const BuildProgress& progress, int jobs) {
+                                   const BuildProgress& progress, int jobs, std::vector<std::string>* out_warnings) {
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs(clips.size());
+  std::vector<std::vector<std::string>> warnings(clips.size());
   std::mutex m;
   long done = 0;
   // Clips are independent: read them on several threads, each into its own slot.
@@ -134,7 +167,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
     try {
       inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
-                                       [&] { return read_reference(clips[i], config, lexicon); });
+                                       [&] { return read_reference(clips[i], config, lexicon, warnings[i]); });
     } catch (...) {
       error = std::current_exception();
     }
@@ -144,6 +177,8 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     }
     if (error) std::rethrow_exception(error);
   });
+  if (out_warnings)
+    for (const std::vector<std::string>& w : warnings) out_warnings->insert(out_warnings->end(), w.begin(), w.end());
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
   return naming_memory_errors(what, "building the graph",
                               [&] { return graph_build(std::move(inputs), config.graph, progress); });
@@ -195,11 +230,25 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   r.motion = assemble_motion(g, r.plan, assembly_params(config));
 
   r.report = reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton));
+  r.warnings = events.warnings;
   return r;
+}
+
+std::string check_lock_joints_of_graph(const MotionGraph& g, const Config& config, const std::string& graph_name) {
+  const std::vector<std::string>& joints = config.cleanup.lock_joints;
+  if (joints.empty()) return "";
+  std::vector<std::string> names;
+  for (const Joint& j : g.motion.skeleton.joints) names.push_back(j.name);
+  for (const std::string& j : joints)
+    if (std::find(names.begin(), names.end(), j) == names.end())
+      throw Error(graph_name + ": lock_joints names '" + j + "', which is not a joint of its skeleton" +
+                  did_you_mean(j, names));
+  return graph_name + ": lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')";
 }
 
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
                     const std::string& graph_name) {
+  check_lock_joints_of_graph(g, config, graph_name);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
   check_output_size(events.total_frames, g.motion.skeleton, speech.audio);
