@@ -16,20 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void check_output(const std::string& path) {
-  if (!ends_with_ci(path, ".mp4") && !ends_with_ci(path, ".mkv") && !ends_with_ci(path, ".mov"))
-    throw Error(path + ": the video must be a .mp4, .mkv or .mov file");
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty() && !fs::is_directory(parent, ec))
-    throw Error(path + ": the folder " + parent.string() + " does not exist");
-}
-
-// Throws once Ctrl-C or a TERM came (engine/core/interrupt.h): the job ends through the error
-// path, so the temporary video is removed rather than left behind.
-void check_interrupt(const std::string& output) {
-  if (InterruptFlag::raised()) throw Error(output + ": interrupted; no video written");
-}
+// Throws Interrupted once Ctrl-C, a TERM or a HUP came (engine/core/interrupt.h): the job ends
+// through the error path, so ffmpeg is stopped and the temporary video removed.
+void check_interrupt(const std::string& output) { throw_if_interrupted(output, "no video written"); }
 
 // A signal after a successful finish() changes nothing: the video is complete.
 void encode(const Scene& scene, const EncoderSettings& settings) {
@@ -50,18 +39,14 @@ void encode(const Scene& scene, const EncoderSettings& settings) {
   }
 }
 
-// Beside the output, so the final rename stays on one file system; same extension, so ffmpeg
-// picks the same container.
-std::string temporary_twin(const std::string& path) {
-  const fs::path p(path);
-  const fs::path name = p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string();
-  return (p.parent_path() / name).string();
-}
-
 }  // namespace
 
+const std::vector<std::string> kVideoExtensions = {".mp4", ".mkv", ".mov"};
+
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options) {
-  check_output(in.output);
+  check_output_file({"", in.output}, kVideoExtensions);
+  // The partial videos of renders that were killed (SIGKILL cannot be caught) go now.
+  remove_stale_temporaries(fs::path(in.output).parent_path().string(), kVideoExtensions);
   const InterruptFlag interrupt;
   const std::string ffmpeg = find_executable(options.ffmpeg);
   if (ffmpeg.empty())
@@ -71,7 +56,9 @@ RenderSummary render_video(const RenderInputs& in, const RenderOptions& options)
 
   EncoderSettings e;
   e.ffmpeg = ffmpeg;
-  e.output = temporary_twin(in.output);
+  // Beside the output, so the final rename stays on one file system, and named as every
+  // temporary of gmg is, so a later render removes it should this one be killed.
+  e.output = temporary_name_for(in.output);
   e.name = in.output;
   e.audio = in.audio;
   e.width = scene.width;

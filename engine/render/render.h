@@ -23,8 +23,14 @@ struct RenderSummary {
   std::vector<std::string> notes;
 };
 
+// The containers render_video writes, by extension: {".mp4", ".mkv", ".mov"}.
+extern const std::vector<std::string> kVideoExtensions;
+
 // gmg::Error "path: what" for a missing or invalid input, an output that is not .mp4, .mkv or
-// .mov or whose folder does not exist, no ffmpeg (options.ffmpeg not found), or ffmpeg failing.
+// .mov or cannot be written (check_output_file), no ffmpeg (options.ffmpeg not found), or ffmpeg
+// failing; Interrupted on SIGINT, SIGTERM or SIGHUP (ffmpeg stopped, nothing written). First it
+// removes the temporary videos that renders killed by SIGKILL left in the output's folder
+// (remove_stale_temporaries), and ffmpeg dies with this process, whatever kills it.
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options);
 
 }  // namespace gmg::render

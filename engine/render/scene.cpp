@@ -38,7 +38,7 @@ std::vector<double> speech_onsets(const audio::Audio& sound, const ReportFacts& 
 void read_speech(const RenderInputs& in, Scene& s) {
   audio::Audio sound;
   if (!in.audio.empty()) {
-    sound = audio::read_audio(in.audio);
+    sound = audio::read_audio(in.audio, &s.notes);
     s.audio_s = sound.duration();
     if (std::abs(s.audio_s - s.frame_count / s.fps) > 1.0)
       s.notes.push_back(in.audio + " lasts " + format_seconds(s.audio_s) + " and " + in.motion + " " +
