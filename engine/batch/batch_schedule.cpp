@@ -108,6 +108,7 @@ class Scheduler {
       graph = std::make_shared<const MotionGraph>(setup_.options.graph.empty()
                                                       ? graph_build_from_files({files}, setup_.config)
                                                       : graph_load(setup_.options.graph));
+      if (!setup_.options.graph.empty()) check_lock_joints_of_graph(*graph, setup_.config, setup_.options.graph);
     } catch (const std::exception& e) {
       error = e.what();
     }
