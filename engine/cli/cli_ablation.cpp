@@ -27,6 +27,7 @@ void run_ablation(AblationArgs& a) {
       {"--motion", a.motion}, {"--audio", a.audio}, {"--transcript", transcript_or_none(a.transcript)}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
   check_outputs_apart({{"--csv", a.csv}}, inputs);
+  check_outputs({{"--csv", a.csv, kCsvExtensions}});
   const AblationResult result = ablation_run({a.motion, a.audio, transcript_or_none(a.transcript)}, a.options, cfg);
   std::cout << ablation_markdown(result);
   if (!a.csv.empty()) {
@@ -45,16 +46,16 @@ void add_ablation_command(CLI::App& app) {
   cmd->add_option("--audio", a->audio, "its WAV")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (optional)");
   cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
+      ->check(CLI::Range(2, 1000))
       ->capture_default_str();
-  cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")
-      ->check(CLI::PositiveNumber)
+  positive_number(whole_number(cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")))
       ->capture_default_str();
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
   cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
       ->capture_default_str();
-  cmd->add_option("--csv", a->csv, "also write the table as CSV");
+  cmd->add_option("--csv", a->csv, "also write the table as CSV (.csv)");
   a->config.add(cmd, false);
   cmd->callback([a] { run_ablation(*a); });
 }

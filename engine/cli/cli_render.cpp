@@ -34,7 +34,7 @@ void run_render(RenderArgs& a) {
   parse_size(a.size, a.options);
   a.inputs.transcript_format = text::parse_transcript_format(a.format);
   const render::RenderSummary r = render::render_video(a.inputs, a.options);
-  for (const std::string& n : r.notes) std::cerr << "gmg: warning: " << n << "\n";
+  print_warnings(r.notes);
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "wrote " << a.inputs.output << ": " << r.frames << " frames at " << r.fps << " fps, " << r.width << "x"
             << r.height;
