@@ -79,9 +79,11 @@ std::optional<std::string> unknown_option(CLI::App& app, int argc, char** argv) 
     if (name.size() > 2 && name[1] != '-') name = name.substr(0, 2);  // -j4: -j with its value
     if (cmd->get_option_no_throw(name) != nullptr) continue;
     if (cmd != &app && app.get_option_no_throw(name) != nullptr) continue;  // --help, --version
-    const std::string where = cmd == &app ? std::string() : cmd->get_name() + ": ";
-    return where + "unknown option '" + escape_nonprintable(name) + "'" + did_you_mean(name, option_names(*cmd)) +
-           " (see '" + path + " --help')";
+    std::string message = cmd == &app ? std::string() : cmd->get_name() + ": ";
+    message += "unknown option '" + escape_nonprintable(name) + "'";
+    message += did_you_mean(name, option_names(*cmd));
+    message += " (see '" + path + " --help')";
+    return message;
   }
   return std::nullopt;
 }

@@ -239,10 +239,12 @@ std::string check_lock_joints_of_graph(const MotionGraph& g, const Config& confi
   if (joints.empty()) return "";
   std::vector<std::string> names;
   for (const Joint& j : g.motion.skeleton.joints) names.push_back(j.name);
-  for (const std::string& j : joints)
-    if (std::find(names.begin(), names.end(), j) == names.end())
-      throw Error(graph_name + ": lock_joints names '" + j + "', which is not a joint of its skeleton" +
-                  did_you_mean(j, names));
+  const auto missing = std::find_if(joints.begin(), joints.end(), [&](const std::string& j) {
+    return std::find(names.begin(), names.end(), j) == names.end();
+  });
+  if (missing != joints.end())
+    throw Error(graph_name + ": lock_joints names '" + *missing + "', which is not a joint of its skeleton" +
+                did_you_mean(*missing, names));
   return graph_name + ": lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')";
 }
 

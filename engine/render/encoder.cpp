@@ -69,7 +69,7 @@ std::vector<std::string> ffmpeg_arguments(const EncoderSettings& s) {
 // the folder, not the codec. "" when none does.
 std::string write_failure(const std::string& log) {
   for (const int err : {ENOSPC, EDQUOT, EROFS, EACCES, EIO, EFBIG}) {
-    const std::string text = std::strerror(err);
+    std::string text = std::strerror(err);
     if (log.find(text) != std::string::npos) return text;
   }
   return "";

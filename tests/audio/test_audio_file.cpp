@@ -88,7 +88,7 @@ TEST(AudioFile, FilesThatAreNotAudioSayWhatTheyAre) {
             dir.file("words.flac") + ": is not audio: it is a text file" + hint);
   EXPECT_EQ(refused("take.wav", "HIERARCHY\nROOT hips\n"),
             dir.file("take.wav") + ": is not audio: it is a BVH motion file" + hint);
-  EXPECT_EQ(refused("ref.mp3", "GMGRAPH\0\x03\0\0\0"),
+  EXPECT_EQ(refused("ref.mp3", std::string("GMGRAPH\0\x03\0\0\0", 12)),
             dir.file("ref.mp3") + ": is not audio: it is a gmg graph file" + hint);
   EXPECT_EQ(refused("t.wav", "{\"segments\": []}"), dir.file("t.wav") + ": is not audio: it is JSON text" + hint);
   EXPECT_EQ(refused("empty.mp3", ""), dir.file("empty.mp3") + ": is empty (0 bytes), not audio");
@@ -100,7 +100,7 @@ TEST(AudioFile, FilesThatAreNotAudioSayWhatTheyAre) {
 TEST(AudioFile, SniffingNamesTheFormats) {
   using gmg::audio::sniff_content;
   EXPECT_EQ(sniff_content(std::string("RIFF\x24\0\0\0WAVEfmt ", 16)).name, "a WAV file");
-  EXPECT_TRUE(sniff_content("fLaC\0\0\0\x22").audio);
+  EXPECT_TRUE(sniff_content(std::string("fLaC\0\0\0\x22", 8)).audio);
   EXPECT_EQ(sniff_content("ID3\x04").name, "an MP3 file");
   EXPECT_EQ(sniff_content("\xFF\xFB\x90\x64").name, "an MP3 file");
   EXPECT_EQ(sniff_content("\xFF\xF1\x50\x80").name, "an AAC (ADTS) file");
@@ -109,7 +109,7 @@ TEST(AudioFile, SniffingNamesTheFormats) {
                                       12))
                 .name,
             "an MP4/M4A file");
-  EXPECT_EQ(sniff_content("OggS\0\x02").name, "an Ogg file");
+  EXPECT_EQ(sniff_content(std::string("OggS\0\x02", 6)).name, "an Ogg file");
   EXPECT_EQ(sniff_content("\xEF\xBB\xBFHIERARCHY\r\n").name, "a BVH motion file");
   EXPECT_EQ(sniff_content("PK\x03\x04").name, "a ZIP archive (an .npz?)");
   EXPECT_EQ(sniff_content("File type = \"ooTextFile\"").name, "a Praat TextGrid");

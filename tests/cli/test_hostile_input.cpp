@@ -740,7 +740,7 @@ bool ends_within(pid_t pid, double seconds) {
 
 // A stand-in for ffmpeg that records its process id and then is ffmpeg (exec keeps the id).
 std::string ffmpeg_recording_its_pid(const fs::path& dir) {
-  const std::string path = (dir / "ffmpeg_wrapper.sh").string();
+  std::string path = (dir / "ffmpeg_wrapper.sh").string();
   write_text(path, "#!/bin/sh\necho $$ > '" + (dir / "ffmpeg.pid").string() + "'\nexec ffmpeg \"$@\"\n");
   fs::permissions(path, fs::perms::owner_all);
   return path;

@@ -141,7 +141,7 @@ TEST_F(SynthPipeline, SilentOrShortSpeechIsRefusedUnlessAllowed) {
   const MotionGraph g = graph_load(file("ref.gmg"));
   audio::Audio quiet;
   quiet.sample_rate = 16000;
-  quiet.samples.assign(16000 * 12, 0.0f);
+  quiet.samples.assign(std::size_t{16000} * 12, 0.0f);
   audio::write_wav_pcm16(file("silence.wav"), quiet);
   quiet.samples.resize(160);  // 10 ms
   audio::write_wav_pcm16(file("click.wav"), quiet);
