@@ -48,7 +48,7 @@ void add_ablation_command(CLI::App& app) {
   cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
       ->check(CLI::Range(2, 1000))
       ->capture_default_str();
-  positive_number(whole_number(cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")))
+  positive_number(whole_number(cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)"), 10000))
       ->capture_default_str();
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))

@@ -92,7 +92,7 @@ void add_batch_command(CLI::App& app, int* exit_code) {
                                    "seed of the pairing draw and of every reenactment (default: the config's seed, " +
                                        std::to_string(Config{}.seed) + ")"))
           ->default_str("");
-  whole_number(sub->add_option("--jobs,-j", o.jobs, "parallel clips (default 0: all cores)"));
+  whole_number(sub->add_option("--jobs,-j", o.jobs, "parallel clips (default 0: all cores)"), kMaxJobs);
   sub->add_flag("--force", o.force, "redo clips whose output BVH exists");
   sub->add_flag("--reports", o.reports, "also write OUTDIR/<stem>.json, each reenactment's report");
   sub->add_option("--progress", st->progress, "auto (updating line on a terminal), lines, or none")

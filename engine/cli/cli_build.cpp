@@ -134,7 +134,7 @@ void add_build_command(CLI::App& app) {
                   "instead of --motion/--audio: a folder of clips (BVH + WAV + optional transcript with matching "
                   "stems, flat or in bvh/ wav/ tsv/ subfolders) or a CSV manifest with header stem,bvh,wav,transcript; "
                   "repeatable; clips join in stem order");
-  whole_number(cmd->add_option("--jobs,-j", a->jobs, "clips read at once (default 0: all cores)"));
+  whole_number(cmd->add_option("--jobs,-j", a->jobs, "clips read at once (default 0: all cores)"), kMaxJobs);
   cmd->add_option("--progress", a->progress, "auto (an updating line on a terminal), lines, or none")
       ->check(CLI::IsMember({"auto", "lines", "none"}));
   cmd->add_option("-o,--output", a->output, "graph file to write (.gmg)")->required();

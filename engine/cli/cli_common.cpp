@@ -1,7 +1,10 @@
 #include "engine/cli/cli_common.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <iostream>
+#include <limits>
 
 #include <CLI/CLI.hpp>
 
@@ -15,11 +18,15 @@ const std::vector<std::string> kJsonExtensions = {".json"};
 const std::vector<std::string> kGraphExtensions = {".gmg"};
 const std::vector<std::string> kCsvExtensions = {".csv"};
 
-CLI::Option* whole_number(CLI::Option* option) {
+CLI::Option* whole_number(CLI::Option* option, std::uint64_t max) {
   return option->check(CLI::Validator(
-      [](std::string& v) -> std::string {
+      [max](std::string& v) -> std::string {
         const bool digits = !v.empty() && std::all_of(v.begin(), v.end(), [](char c) { return c >= '0' && c <= '9'; });
-        return digits ? std::string() : "'" + v + "' is not a whole number 0 or above";
+        if (!digits) return "'" + v + "' is not a whole number 0 or above";
+        std::uint64_t x = 0;
+        const auto r = std::from_chars(v.data(), v.data() + v.size(), x);
+        if (r.ec != std::errc() || x > max) return v + " is out of range (0 to " + std::to_string(max) + ")";
+        return "";
       },
       ""));
 }
@@ -57,7 +64,8 @@ Config ConfigOptions::make() const {
     for (const std::string& a : sets) config_set_assignment(c, a);
     config_validate(c);
   } catch (const Error& e) {
-    throw UsageError(std::string("--set: ") + e.what());
+    const std::string what = e.what();
+    throw UsageError(what.rfind("--set", 0) == 0 ? what : "--set: " + what);
   }
   if (seed) c.seed = *seed;
   return c;

@@ -52,10 +52,14 @@ struct ConfigOptions {
 };
 
 // The checks shared by the options of every subcommand (so options added later get them too):
-// a seed or count is a whole number 0 or above ("-1" is refused, not wrapped to 2^64 - 1), a
-// duration above 0, each refused with a short message.
-CLI::Option* whole_number(CLI::Option* option);
+// a seed or count is a whole number from 0 to `max` ("-1" is refused, not wrapped to 2^64 - 1,
+// and 2^64 not saturated to it), a duration a number above 0, each refused with a short message.
+CLI::Option* whole_number(CLI::Option* option, std::uint64_t max = UINT64_MAX);
 CLI::Option* positive_number(CLI::Option* option);
+
+// The most --jobs a command takes: far above any machine's cores, far below what would make
+// thousands of threads.
+inline constexpr std::uint64_t kMaxJobs = 1024;
 
 // check_output_file (engine/core/files.h) for each output that is given: its kind, extension
 // and folder, before any work.

@@ -26,6 +26,11 @@ void parse_size(const std::string& text, render::RenderOptions& o) {
     throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 640x480)");
   o.width = w;
   o.height = h;
+  try {
+    render::check_size(o);
+  } catch (const Error& e) {
+    throw UsageError(e.what());  // an option out of range, not an input's problem
+  }
 }
 
 void run_render(RenderArgs& a) {

@@ -8,6 +8,8 @@
 #include "engine/cli/cli_common.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
 #include "engine/synth/synth.h"
 
 namespace gmg {
@@ -22,6 +24,9 @@ struct SynthArgs {
 void run_synth(const SynthArgs& a) {
   if (a.stem.empty() || a.stem.find('/') != std::string::npos || a.stem == "." || a.stem == "..")
     throw UsageError("synth: --stem '" + a.stem + "' is not a plain file name (the files go into -o " + a.dir + ")");
+  if (a.spec.duration_s > limits::kMaxAudioSeconds)
+    throw UsageError("--duration: " + format_number(a.spec.duration_s) + " s is more than the day (" +
+                     format_number(limits::kMaxAudioSeconds) + " s) gmg synthesises");
   check_output_folder({"-o", a.dir});
   const SynthClip clip = synth_speaker(a.spec);
   CreatedFolders folder(a.dir);  // a failed write (a full disk) leaves no empty folder
@@ -46,7 +51,8 @@ void add_synth_command(CLI::App& app) {
   positive_number(cmd->add_option("--duration", a->spec.duration_s, "seconds"));
   whole_number(cmd->add_option("--seed", a->spec.seed, "seed"));
   cmd->add_option("--style", a->spec.style, "speaker style 0..1")->check(CLI::Range(0.0, 1.0));
-  whole_number(cmd->add_option("--joints", a->spec.joint_count_hint, "joint count hint (0 = default skeleton)"));
+  whole_number(cmd->add_option("--joints", a->spec.joint_count_hint, "joint count hint (0 = default skeleton)"),
+               limits::kMaxJoints);
   cmd->add_flag("--no-motion", a->no_motion, "write only the speech (WAV + TSV), as a test input");
   cmd->callback([a] { run_synth(*a); });
 }

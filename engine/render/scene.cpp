@@ -58,12 +58,6 @@ void read_speech(const RenderInputs& in, Scene& s) {
   }
 }
 
-void check_size(const RenderOptions& o) {
-  if (o.width < 160 || o.height < 120 || o.width > 3840 || o.height > 2160 || o.width % 2 || o.height % 2)
-    throw Error("--size: " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                " is not an even size from 160x120 to 3840x2160");
-}
-
 // Lays out the panels (left to right) and the bands for the strip and the captions, and places
 // one camera framing every figure over every frame.
 void lay_out(const RenderOptions& o, Scene& s) {
@@ -199,6 +193,12 @@ Canvas::~Canvas() {
 const unsigned char* Canvas::pixels() const {
   cairo_surface_flush(surface_);
   return cairo_image_surface_get_data(surface_);
+}
+
+void check_size(const RenderOptions& o) {
+  if (o.width < 160 || o.height < 120 || o.width > 3840 || o.height > 2160 || o.width % 2 || o.height % 2)
+    throw Error("--size: " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                " is not an even size from 160x120 to 3840x2160");
 }
 
 }  // namespace gmg::render

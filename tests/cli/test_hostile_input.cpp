@@ -880,6 +880,14 @@ TEST_F(HostileInput, Case26UsageErrorsExitTwoWithTheNearestName) {
   expect_usage_error(gmg(with({"--set", "l_pn=abc"})), "config key 'l_pn': 'abc' is not a whole number");
   expect_usage_error(gmg(with({"--set", "planner=papr"})), "'papr' is not natural or paper (did you mean 'paper'?)");
   expect_usage_error(gmg(with({"--seed", "-1"})), "--seed: '-1' is not a whole number 0 or above");
+  expect_usage_error(gmg(with({"--seed", "18446744073709551616"})),  // 2^64: refused, not saturated
+                     "--seed: 18446744073709551616 is out of range (0 to 18446744073709551615)");
+  expect_usage_error(gmg(with({"--set", "l_pn"})), "gmg: error: --set expects key=value, got 'l_pn'");
+  expect_usage_error(gmg({"build", "--motion", "m.bvh", "--audio", "a.wav", "-o", "g.gmg", "--jobs", "99999999999"}),
+                     "--jobs: 99999999999 is out of range (0 to 1024)");
+  expect_usage_error(gmg({"render", "m.bvh", "-o", "v.mp4", "--size", "0x0"}),
+                     "--size: 0x0 is not an even size from 160x120 to 3840x2160");
+  expect_usage_error(gmg({"synth", "-o", "s", "--duration", "1e9"}), "--duration: 1e+09 s is more than the day");
   expect_usage_error(gmg({"inspect", "ref.gmg", "--dot", "g.dot", "--frames", "300:100"}),
                      "--frames: 300:100 is empty: FROM (300) must be below TO (100)");
   expect_usage_error(gmg({"inspect", "ref.gmg", "--dot", "g.dot", "--frames=-5:10"}), "is not a frame number");
