@@ -143,7 +143,8 @@ std::string damage_warning(const std::string& path, const std::vector<std::strin
   return path + ": " + kDamagedPrefix + what + " (a cut or corrupted file?); the audio may be incomplete or have gaps";
 }
 
-Audio decode_with_aubio(const std::string& path, std::vector<std::string>* out_warnings) {
+// `kind` is what the first bytes say (sniff_content; "" when nothing).
+Audio decode_with_aubio(const std::string& path, const std::string& kind, std::vector<std::string>* out_warnings) {
   route_aubio_log();
   aubio_message.clear();
   decoder_errors.clear();
@@ -151,9 +152,15 @@ Audio decode_with_aubio(const std::string& path, std::vector<std::string>* out_w
   Source s;
   s.source = new_aubio_source(path.c_str(), 0, kHop);  // 0: the file's own sample rate
   if (!s.source) {
-    std::string why = aubio_message;
-    if (why.empty() && !decoder_errors.empty()) why = decoder_errors.front();
-    throw Error(path + ": cannot decode as audio" + (why.empty() ? "" : " (aubio: " + escape_nonprintable(why) + ")"));
+    // The decoder's own reason ("moov atom not found": a cut MP4) comes first: aubio tries its
+    // other readers after it, and the last one's complaint (a WAV reader's "could not find RIFF
+    // header") says nothing about a file that is no WAV.
+    const std::string why = !decoder_errors.empty() ? "the decoder: " + decoder_errors.front()
+                            : aubio_message.empty() ? std::string()
+                                                    : "aubio: " + aubio_message;
+    throw Error(path + ": cannot decode " + (kind.empty() ? std::string("as audio") : kind) +
+                (why.empty() ? "" : " (" + escape_nonprintable(why) + ")") +
+                (kind.empty() ? "" : "; the file may be cut short or damaged"));
   }
   const uint_t rate = aubio_source_get_samplerate(s.source);
   const uint_t channels = aubio_source_get_channels(s.source);
@@ -241,7 +248,7 @@ Audio read_audio(const std::string& path, std::vector<std::string>* out_warnings
                 " (give the speech as WAV, FLAC, MP3, OGG, M4A, ...)");
   if (kind.audio && is_wav_path(path) && out_warnings)
     out_warnings->push_back(path + ": is " + kind.name + ", not a WAV; decoded as such");
-  return decode_with_aubio(path, out_warnings);
+  return decode_with_aubio(path, kind.name, out_warnings);
 }
 
 }  // namespace gmg::audio

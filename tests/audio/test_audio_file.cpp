@@ -13,6 +13,7 @@
 #include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
@@ -115,6 +116,22 @@ TEST(AudioFile, SniffingNamesTheFormats) {
   EXPECT_EQ(sniff_content("File type = \"ooTextFile\"").name, "a Praat TextGrid");
   EXPECT_EQ(sniff_content("\x01\x02\x03\x04").name, "");
   EXPECT_FALSE(sniff_content("hello").audio);
+}
+
+// An M4A cut in half has lost its index (written last): the decoder's reason leads, not the
+// complaint of the WAV reader aubio tries after it ("could not find RIFF header").
+TEST(AudioFile, ACutM4aSaysWhyItCannotBeDecoded) {
+  if (!have_ffmpeg()) GTEST_SKIP() << "the ffmpeg tool is absent";
+  TempDir dir;
+  gmg::audio::write_wav_pcm16(dir.file("t.wav"), tone(16000));
+  ffmpeg(dir.file("t.wav"), dir.file("t.m4a"), "-c:a aac");
+  const std::string whole = gmg::read_file_bytes(dir.file("t.m4a"));
+  gmg::testing::write_text(dir.file("cut.m4a"), whole.substr(0, whole.size() / 2));
+  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("cut.m4a")); });
+  EXPECT_EQ(msg, dir.file("cut.m4a") +
+                     ": cannot decode an MP4/M4A file (the decoder: moov atom not found); the file may be cut short or "
+                     "damaged");
+  EXPECT_EQ(msg.find("RIFF"), std::string::npos) << msg;
 }
 
 TEST(AudioFile, AnMp3NamedWavIsDecodedWithAWarning) {
