@@ -155,12 +155,15 @@ Audio decode_with_aubio(const std::string& path, const std::string& kind, std::v
     // The decoder's own reason ("moov atom not found": a cut MP4) comes first: aubio tries its
     // other readers after it, and the last one's complaint (a WAV reader's "could not find RIFF
     // header") says nothing about a file that is no WAV.
-    const std::string why = !decoder_errors.empty() ? "the decoder: " + decoder_errors.front()
-                            : aubio_message.empty() ? std::string()
-                                                    : "aubio: " + aubio_message;
+    const bool wav_reader = aubio_message.find("RIFF") != std::string::npos;  // the last reader aubio tried
+    const std::string why = !decoder_errors.empty()               ? "the decoder: " + decoder_errors.front()
+                            : aubio_message.empty() || wav_reader ? std::string()
+                                                                  : "aubio: " + aubio_message;
     throw Error(path + ": cannot decode " + (kind.empty() ? std::string("as audio") : kind) +
                 (why.empty() ? "" : " (" + escape_nonprintable(why) + ")") +
-                (kind.empty() ? "" : "; the file may be cut short or damaged"));
+                (kind.empty()
+                     ? (why.empty() ? ": no audio format the decoder knows (WAV, FLAC, MP3, OGG, M4A, ...)" : "")
+                     : "; the file may be cut short or damaged"));
   }
   const uint_t rate = aubio_source_get_samplerate(s.source);
   const uint_t channels = aubio_source_get_channels(s.source);

@@ -73,6 +73,13 @@ TEST(AudioFile, UnreadableAndUndecodableFilesNameTheFile) {
   const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("noise.flac")); });
   EXPECT_EQ(msg.rfind(dir.file("noise.flac") + ": cannot decode as audio", 0), 0u) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("RIFF"), std::string::npos) << "a WAV reader's complaint about a file that is no WAV: " << msg;
+  std::string bytes(4096, '\0');  // binary without any format's signature
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(((i * 2654435761u >> 13) & 0x7F) | 0x01);
+  gmg::testing::write_text(dir.file("noise.bin"), bytes);
+  const std::string bin = error_of([&] { gmg::audio::read_audio(dir.file("noise.bin")); });
+  EXPECT_EQ(bin.rfind(dir.file("noise.bin") + ": cannot decode as audio", 0), 0u) << bin;
+  EXPECT_EQ(bin.find("RIFF"), std::string::npos) << bin;
 }
 
 // What a file holds decides how it is read, and a file that is not audio says what it is instead
