@@ -1,11 +1,29 @@
 #!/usr/bin/env bash
 # A one-node Slurm cluster on this machine, for trying scripts/slurm_batch.sh and for its test
 # (tests/batch/slurm_batch_test.sh): installs Debian's slurm-wlm and munge when missing, writes
-# /etc/slurm/slurm.conf for this host (all its cores, one partition "local"), and starts munged,
-# slurmctld and slurmd unless they already run. Needs root (or sudo). Idempotent.
-#   scripts/setup_local_slurm.sh          set up and start
-#   scripts/setup_local_slurm.sh --stop   stop the three daemons it started
+# /etc/slurm/slurm.conf (or $SLURM_CONF) for this host (all its cores, one partition "local"), and
+# starts munged, slurmctld and slurmd unless they already run. Needs root (or sudo). Idempotent.
+# A slurm.conf it did not write (a real cluster's) is left alone: it stops, before installing or
+# starting anything, unless given --force (which keeps the old file as slurm.conf.bak).
+#   scripts/setup_local_slurm.sh            set up and start
+#   scripts/setup_local_slurm.sh --force    the same, replacing a slurm.conf of another origin
+#   scripts/setup_local_slurm.sh --stop     stop the three daemons it started
 set -euo pipefail
+
+conf=${SLURM_CONF:-/etc/slurm/slurm.conf}
+marker="# Written by gmg's scripts/setup_local_slurm.sh: one node, this machine."
+force=0
+[ "${1:-}" = "--force" ] && force=1
+if [ "${1:-}" != "--stop" ] && [ -e "$conf" ] && [ "$(head -n 1 "$conf" 2>/dev/null)" != "$marker" ]; then
+  if [ $force -eq 0 ]; then
+    echo "setup_local_slurm: $conf exists and was not written by this script (a cluster's own configuration?);" \
+      "left unchanged. Give --force to replace it (the old file is kept as $conf.bak)." >&2
+    exit 1
+  fi
+  backup_needed=1
+else
+  backup_needed=0
+fi
 
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
@@ -34,11 +52,14 @@ fi
 host=$(hostname -s)
 cpus=$(nproc)
 memory=$(awk '/MemTotal/ {print int($2 / 1024 * 0.9)}' /proc/meminfo)
-conf=/etc/slurm/slurm.conf
-run mkdir -p /etc/slurm /var/lib/slurm/slurmctld /var/lib/slurm/slurmd /var/log/slurm "$pidfile_dir"
+run mkdir -p "$(dirname "$conf")" /var/lib/slurm/slurmctld /var/lib/slurm/slurmd /var/log/slurm "$pidfile_dir"
 run chown -R slurm:slurm /var/lib/slurm /var/log/slurm
+if [ "$backup_needed" -eq 1 ]; then
+  run cp -p "$conf" "$conf.bak"
+  echo "setup_local_slurm: replacing $conf (the old one is $conf.bak)"
+fi
 run tee "$conf" >/dev/null <<CONF
-# Written by gmg's scripts/setup_local_slurm.sh: one node, this machine.
+$marker
 ClusterName=gmg-local
 SlurmctldHost=$host
 SlurmUser=slurm

@@ -5,7 +5,11 @@
 #include <random>
 #include <stdexcept>
 
+#include <sys/mount.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 namespace gmg::testing {
 
@@ -34,6 +38,25 @@ TempDir::TempDir() {
 TempDir::~TempDir() {
   std::error_code ec;
   std::filesystem::remove_all(path_, ec);
+}
+
+SmallDisk::SmallDisk(int size_kb, bool read_only, const std::function<void(const std::filesystem::path&)>& fill) {
+  const std::string options = "size=" + std::to_string(size_kb) + "k,mode=0777";
+  if (::mount("tmpfs", dir_.path().c_str(), "tmpfs", 0, options.c_str()) != 0) {
+    why_ = std::string("cannot mount a small tmpfs (") + std::strerror(errno) + "): needs root";
+    return;
+  }
+  mounted_ = true;
+  if (fill) fill(dir_.path());
+  if (read_only && ::mount("tmpfs", dir_.path().c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, options.c_str()) != 0) {
+    why_ = std::string("cannot make the tmpfs read-only (") + std::strerror(errno) + ")";
+    ::umount2(dir_.path().c_str(), MNT_DETACH);
+    mounted_ = false;
+  }
+}
+
+SmallDisk::~SmallDisk() {
+  if (mounted_) ::umount2(dir_.path().c_str(), MNT_DETACH);
 }
 
 void write_text(const std::string& path, const std::string& text) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace gmg::testing {
@@ -21,6 +22,28 @@ class TempDir {
 
  private:
   std::filesystem::path path_;
+};
+
+// A small file system of its own (tmpfs) for the cases a full or read-only disk makes: mounted on a
+// fresh folder, `size_kb` large (at least a few KB), read-only when asked (after `fill`, called
+// with the folder while it is still writable). Mounting needs root (CAP_SYS_ADMIN): ok() is false
+// otherwise, and the test skips with why(). Unmounted and removed when the object goes.
+class SmallDisk {
+ public:
+  explicit SmallDisk(int size_kb, bool read_only = false,
+                     const std::function<void(const std::filesystem::path&)>& fill = {});
+  ~SmallDisk();
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  bool ok() const { return mounted_; }
+  const std::string& why() const { return why_; }
+  const std::filesystem::path& path() const { return dir_.path(); }
+  std::string file(const std::string& name) const { return dir_.file(name); }
+
+ private:
+  TempDir dir_;
+  bool mounted_ = false;
+  std::string why_;
 };
 
 // Writes text (bytes as given) to a file.

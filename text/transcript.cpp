@@ -30,7 +30,8 @@ void json_fail(const std::string& path, const std::string& where, const std::str
 }
 
 std::string quote_field(std::string_view s) {
-  std::string out(s.substr(0, 60));
+  // Escaped: the field of a binary file given as a transcript must not reach the terminal raw.
+  std::string out = escape_nonprintable(s.substr(0, 60));
   if (s.size() > 60) out += "...";
   return "\"" + out + "\"";
 }

@@ -17,7 +17,8 @@ std::string format_seconds(double t);
 // order).
 void sort_words(std::vector<Word>& words);
 
-// Quotes a field for an error message, shortened to 60 bytes and "..." when long.
+// Quotes a field for an error message, shortened to 60 bytes and "..." when long, its
+// non-printable bytes escaped (escape_nonprintable).
 std::string quote_field(std::string_view s);
 
 // True when a field that failed to parse as a number names a non-finite one ("nan", "-inf",

@@ -333,7 +333,12 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
   const Recording rec = read_recording(inputs, base);
   // Each test part must hold the sync control's shifts: 2 * min_shift + 1 s of audio.
   const int min_frames = static_cast<int>(std::ceil((2.0 * options.min_shift_s + 1.0) * rec.motion.fps));
-  const std::vector<TimeFold> folds = time_folds(rec.motion.frame_count, options.folds, min_frames);
+  std::vector<TimeFold> folds;
+  try {
+    folds = time_folds(rec.motion.frame_count, options.folds, min_frames);
+  } catch (const Error& e) {
+    throw Error(inputs.motion + ": " + e.what());  // the recording that is too short
+  }
   const text::Lexicon lexicon = lexicon_for(base.graph);
   constexpr AblationSetup kSetups[] = {
       AblationSetup::WeakDetection, AblationSetup::WeakPruning, AblationSetup::WeakInitialization,

@@ -75,9 +75,11 @@
 //   only: outputs, pairs.csv rows, and a summary.json that records "shard": {"index": K,
 //   "count": N, "batch_clips": all test clips}. Give each part its own OUTDIR.
 // - `--merge DIR... -o OUTDIR` joins the parts' summaries into OUTDIR/summary.csv, summary.json
-//   and pairs.csv (clips by test stem, each clip's output path where its part wrote it). It
-//   needs every part 1..N of one batch exactly once (same N, seed, pairing and clip count) and
-//   no test clip in two parts; otherwise it stops with an error naming the folders.
+//   and pairs.csv (clips by test stem), and puts every part's outputs (BVH and report) into
+//   OUTDIR too, hard-linked when on the same file system, else copied, so OUTDIR holds the whole
+//   batch as one run would (each clip's output path names its copy there). It needs every part
+//   1..N of one batch exactly once (same N, seed, pairing and clip count) and no test clip in two
+//   parts; otherwise it stops with an error naming the folders.
 #pragma once
 
 #include <atomic>

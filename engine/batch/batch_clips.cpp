@@ -249,8 +249,20 @@ Clips collect_clips(const BatchOptions& options) {
   }
   for (const std::string& dir : options.test_dirs) add_test_folder(dir, clips);
   for (const std::string& m : options.test_manifests) read_clip_manifest(m, false, clips.tests);
-  if (clips.pool.empty()) throw Error("batch: the pool holds no reference clip (a BVH and a WAV with the same stem)");
-  if (clips.tests.empty()) throw Error("batch: no test clip found (a WAV file)");
+  // Name where gmg looked: "pool/" or "a, b and 2 more".
+  auto places = [](const std::vector<std::string>& dirs, const std::vector<std::string>& manifests) {
+    std::vector<std::string> all = dirs;
+    all.insert(all.end(), manifests.begin(), manifests.end());
+    std::string text;
+    for (std::size_t i = 0; i < all.size() && i < 3; ++i) text += (i == 0 ? "" : ", ") + all[i];
+    if (all.size() > 3) text += " and " + std::to_string(all.size() - 3) + " more";
+    return text.empty() ? std::string("(no --pool or --pool-manifest given)") : text;
+  };
+  if (clips.pool.empty())
+    throw Error(places(options.pool_dirs, options.pool_manifests) +
+                ": the pool holds no reference clip (a BVH and a WAV with the same stem)");
+  if (clips.tests.empty())
+    throw Error(places(options.test_dirs, options.test_manifests) + ": no test clip found (a WAV file)");
   return clips;
 }
 

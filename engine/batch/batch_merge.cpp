@@ -4,6 +4,7 @@
 
 #include "engine/batch/batch_internal.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 
 namespace gmg {
@@ -72,6 +73,44 @@ void add_references(BatchSummary& merged, const BatchSummary& part) {
   }
 }
 
+// `from` at `to`, whole or not at all: a hard link when both are on one file system (no copy of
+// hours of motion), else a copy; an existing `to` is replaced. Nothing when they are one file.
+void place_file(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  if (fs::exists(to, ec) && fs::equivalent(from, to, ec)) return;
+  const std::string temp = temporary_name_for(to.string());
+  fs::create_hard_link(from, temp, ec);
+  if (ec) {
+    ec.clear();
+    fs::copy_file(from, temp, ec);
+    if (ec) {
+      const std::string reason = ec.message();
+      fs::remove(temp, ec);
+      throw Error(to.string() + ": cannot copy " + from.string() + " there (" + reason + ")");
+    }
+  }
+  rename_into_place(temp, to.string());
+}
+
+// Every part's outputs (BVH, and the report when there is one) into out_dir, so the merged
+// folder holds the whole batch like one run's; each clip's output then names its copy there.
+void gather_outputs(std::vector<BatchClipResult>& clips, const std::map<std::string, std::string>& owner,
+                    const fs::path& out_dir) {
+  for (BatchClipResult& c : clips) {
+    if (c.output.empty()) continue;
+    const fs::path name = fs::path(c.output).filename();
+    const fs::path from = fs::path(owner.at(c.test_stem)) / name;
+    std::error_code ec;
+    if (!fs::is_regular_file(from, ec))
+      throw Error("batch --merge: " + from.string() + " is missing (its part's summary lists it for clip '" +
+                  c.test_stem + "')");
+    place_file(from, out_dir / name);
+    const fs::path report = fs::path(from).replace_extension(".json");
+    if (fs::is_regular_file(report, ec)) place_file(report, out_dir / report.filename());
+    c.output = (out_dir / name).string();
+  }
+}
+
 }  // namespace
 
 BatchSummary batch_merge(const std::vector<std::string>& part_dirs, const std::string& out_dir,
@@ -117,9 +156,13 @@ BatchSummary batch_merge(const std::vector<std::string>& part_dirs, const std::s
                 std::to_string(merged.batch_clips));
   count_statuses(merged);
 
+  check_output_folder({"-o", out_dir});
   std::error_code ec;
   fs::create_directories(out_dir, ec);
-  if (!fs::is_directory(out_dir, ec)) throw Error(out_dir + ": cannot create the output folder");
+  if (!fs::is_directory(out_dir, ec))
+    throw Error(out_dir + ": cannot create the output folder (" +
+                (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
+  gather_outputs(merged.clips, owner, out_dir);
   BatchOptions options;
   options.blacklist = parts.front().record.blacklist;
   const BatchPairing pairing =

@@ -28,39 +28,6 @@ void check_not_an_input_folder(const BatchOptions& options, const fs::path& out_
       }
 }
 
-// The process id of a temporary file "<name>.tmp<pid>_<n>" (write_file_atomically's names) of
-// a BVH, JSON or CSV output; 0 for any other file.
-long temporary_file_pid(const std::string& name) {
-  const std::size_t pos = name.rfind(".tmp");
-  if (pos == std::string::npos || pos == 0) return 0;
-  const std::string base = name.substr(0, pos);
-  auto named = [&](std::string_view ext) { return base.size() > ext.size() && ends_with_ci(base, ext); };
-  if (!named(".bvh") && !named(".json") && !named(".csv")) return 0;
-  const std::string tail = name.substr(pos + 4);
-  const std::size_t us = tail.find('_');
-  if (us == std::string::npos || us == 0 || us + 1 >= tail.size()) return 0;
-  if (!std::all_of(tail.begin(), tail.end(), [](char c) { return (c >= '0' && c <= '9') || c == '_'; })) return 0;
-  try {
-    return std::stol(tail.substr(0, us));
-  } catch (...) {
-    return 0;
-  }
-}
-
-// Removes the temporary files of processes that are gone (a live one may be another batch).
-void remove_stale_temporaries(const fs::path& dir, Progress& progress) {
-  std::error_code ec;
-  int removed = 0;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const long pid = temporary_file_pid(it->path().filename().string());
-    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM) continue;  // still running
-    std::error_code ec2;
-    if (fs::remove(it->path(), ec2)) ++removed;
-  }
-  if (removed) progress.line("batch: removed " + std::to_string(removed) + " temporary file(s) of an interrupted run");
-}
-
 // The same value as an unordered json, to compare with one read from a file.
 nlohmann::json plain(const nlohmann::ordered_json& j) { return parse_json_text(json_dump(j, -1), "batch record"); }
 
@@ -111,12 +78,16 @@ FolderLock::~FolderLock() {
 OutputFolder prepare_output_folder(const BatchOptions& options, Progress& progress) {
   OutputFolder out;
   out.dir = fs::path(options.output_dir);
+  check_output_folder({"-o", options.output_dir});  // a read-only mount, a file in the way: with the reason
   std::error_code ec;
   fs::create_directories(out.dir, ec);
-  if (!fs::is_directory(out.dir, ec)) throw Error(options.output_dir + ": cannot create the output folder");
+  if (!fs::is_directory(out.dir, ec))
+    throw Error(options.output_dir + ": cannot create the output folder (" +
+                (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
   check_not_an_input_folder(options, out.dir);
   out.lock = std::make_unique<FolderLock>(out.dir, options.output_dir);
-  remove_stale_temporaries(out.dir, progress);
+  const int removed = remove_stale_temporaries(out.dir.string(), {".bvh", ".json", ".csv"});
+  if (removed) progress.line("batch: removed " + std::to_string(removed) + " temporary file(s) of an interrupted run");
   return out;
 }
 

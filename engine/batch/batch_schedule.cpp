@@ -10,6 +10,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/parallel.h"
+#include "engine/core/strings.h"
 #include "engine/motion/bvh.h"
 #include "engine/pipeline/pipeline.h"
 #include "graph/graph_io.h"
@@ -83,10 +84,12 @@ class Scheduler {
     const std::string ref_error = r.error;
     const std::size_t ref = static_cast<std::size_t>(&r - refs_.data());
     lock.unlock();
-    run_clip(summary_.clips[i], summary_.references[ref], graph.get(), ref_error);
+    std::vector<std::string> warnings;
+    run_clip(summary_.clips[i], summary_.references[ref], graph.get(), ref_error, warnings);
     graph.reset();
     lock.lock();
     report_clip(summary_.clips[i]);
+    for (const std::string& w : warnings) setup_.progress.line("batch: warning: " + escape_nonprintable(w));
     if (--r.outstanding == 0) r.graph.reset();  // the last clip of this reference
     cv_.notify_all();
   }
@@ -103,16 +106,19 @@ class Scheduler {
     const Clock::time_point t0 = Clock::now();
     std::shared_ptr<const MotionGraph> graph;
     std::string error;
+    std::vector<std::string> warnings;  // a reference's audio and motion of different lengths, decoder damage
     try {
       // A --graph is loaded (moved into place, not copied) and shared like a built one.
       graph = std::make_shared<const MotionGraph>(setup_.options.graph.empty()
-                                                      ? graph_build_from_files({files}, setup_.config)
+                                                      ? graph_build_from_files({files}, setup_.config, {}, 1, &warnings)
                                                       : graph_load(setup_.options.graph));
+      if (!setup_.options.graph.empty()) check_lock_joints_of_graph(*graph, setup_.config, setup_.options.graph);
     } catch (const std::exception& e) {
       error = e.what();
     }
     const double secs = seconds_since(t0);
     lock.lock();
+    for (const std::string& w : warnings) setup_.progress.line("batch: warning: " + escape_nonprintable(w));
     rr.build_seconds = secs;
     if (graph) {
       rr.frames = graph->frame_count();
@@ -132,7 +138,7 @@ class Scheduler {
   // Makes one clip (only this worker touches c; of ref, only the fields no worker writes are
   // read). graph is null when the reference failed.
   void run_clip(BatchClipResult& c, const BatchReferenceResult& ref, const MotionGraph* graph,
-                const std::string& ref_error) const {
+                const std::string& ref_error, std::vector<std::string>& warnings) const {
     const Clock::time_point t0 = Clock::now();
     if (!graph) {
       c.status = BatchClipStatus::Failed;
@@ -153,6 +159,7 @@ class Scheduler {
       speech.audio = t.wav;
       speech.transcript = t.transcript;
       const Reenactment re = reenact(*graph, speech, setup_.config, ref.motion);
+      warnings = re.warnings;
       OutputTransaction outputs;  // the BVH and its report, both or neither
       bvh_write(c.output, re.motion);
       if (setup_.options.reports) {

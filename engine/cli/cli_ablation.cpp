@@ -29,6 +29,7 @@ void run_ablation(AblationArgs& a) {
                                    {"--skeleton", a.skeleton}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
   check_outputs_apart({{"--csv", a.csv}}, inputs);
+  check_outputs({{"--csv", a.csv, kCsvExtensions}});
   const AblationResult result =
       ablation_run({a.motion, a.audio, transcript_or_none(a.transcript), a.skeleton}, a.options, cfg);
   std::cout << ablation_markdown(result);
@@ -49,16 +50,16 @@ void add_ablation_command(CLI::App& app) {
   cmd->add_option("--transcript", a->transcript, "its transcript (optional)");
   cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --motion its skeleton");
   cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
+      ->check(CLI::Range(2, 1000))
       ->capture_default_str();
-  cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)")
-      ->check(CLI::PositiveNumber)
+  positive_number(whole_number(cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)"), 10000))
       ->capture_default_str();
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
   cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
       ->capture_default_str();
-  cmd->add_option("--csv", a->csv, "also write the table as CSV");
+  cmd->add_option("--csv", a->csv, "also write the table as CSV (.csv)");
   a->config.add(cmd, false);
   cmd->callback([a] { run_ablation(*a); });
 }

@@ -8,6 +8,7 @@
 #include "engine/batch/batch.h"
 #include "engine/cli/cli_common.h"
 #include "engine/core/interrupt.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace {
@@ -61,9 +62,13 @@ int run_batch_command(const BatchCliState& st, bool seed_given) {
     const InterruptFlag interrupt;
     options.cancel = &InterruptFlag::flag();
     const BatchSummary s = batch_run(options, config, std::cerr);
-    return s.interrupted ? 130 : s.failed > 0 ? 1 : 0;
+    if (s.interrupted)  // the summary is written: end by the signal (engine/core/interrupt.h)
+      throw_if_interrupted("batch", "the clips made are kept; a re-run resumes");
+    return s.failed > 0 ? 1 : 0;
+  } catch (const Interrupted&) {
+    throw;
   } catch (const std::exception& e) {
-    std::cerr << "gmg: error: " << e.what() << "\n";
+    std::cerr << "gmg: error: " << escape_nonprintable(e.what()) << "\n";
     return 2;
   }
 }
@@ -83,11 +88,11 @@ void add_batch_command(CLI::App& app, int* exit_code) {
   sub->add_option("--manifest", o.pairs_manifest, "CSV test_stem,reference_stem (implies --pairing manifest)");
   sub->add_option("--blacklist", o.blacklist, "file of pool stems to leave out, one a line ('#' comments)");
   CLI::Option* seed_opt =
-      sub->add_option("--seed", st->seed,
-                      "seed of the pairing draw and of every reenactment (default: the config's seed, " +
-                          std::to_string(Config{}.seed) + ")")
+      whole_number(sub->add_option("--seed", st->seed,
+                                   "seed of the pairing draw and of every reenactment (default: the config's seed, " +
+                                       std::to_string(Config{}.seed) + ")"))
           ->default_str("");
-  sub->add_option("--jobs,-j", o.jobs, "parallel clips (default 0: all cores)")->check(CLI::NonNegativeNumber);
+  whole_number(sub->add_option("--jobs,-j", o.jobs, "parallel clips (default 0: all cores)"), kMaxJobs);
   sub->add_flag("--force", o.force, "redo clips whose output BVH exists");
   sub->add_flag("--reports", o.reports, "also write OUTDIR/<stem>.json, each reenactment's report");
   sub->add_option("--progress", st->progress, "auto (updating line on a terminal), lines, or none")

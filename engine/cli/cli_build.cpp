@@ -24,12 +24,13 @@ struct BuildArgs {
   std::string output, format = "auto", progress = "auto", skeleton, tier;
   int jobs = 0;
   ConfigOptions config;
+  bool allow_silence = false;
 };
 
 // The clips of --clips: folders (flat or GENEA-style bvh/ wav/ tsv/ subfolders) and CSV
 // manifests (stem,bvh,wav,transcript), read as `gmg batch` reads its pool, in stem order.
 std::vector<ReferenceFiles> listed_clips(const std::vector<std::string>& sources, const std::string& tier,
-                                         const std::string& skeleton) {
+                                         const std::string& skeleton, bool allow_silence) {
   std::vector<std::string> dirs, manifests, notes;
   for (const std::string& s : sources) {
     std::error_code ec;
@@ -43,7 +44,7 @@ std::vector<ReferenceFiles> listed_clips(const std::vector<std::string>& sources
   std::vector<ReferenceFiles> clips;
   for (const auto& [stem, c] : found) {
     if (!c.error.empty()) throw Error("build: clip '" + stem + "' (" + c.origin + "): " + c.error);
-    clips.push_back({c.bvh, {c.wav, c.transcript, text::TranscriptFormat::Auto, tier}, skeleton});
+    clips.push_back({c.bvh, {c.wav, c.transcript, text::TranscriptFormat::Auto, tier, allow_silence}, skeleton});
   }
   return clips;
 }
@@ -52,7 +53,7 @@ std::vector<ReferenceFiles> clips_of(const BuildArgs& a) {
   if (!a.clips.empty()) {
     if (!a.motion.empty() || !a.audio.empty() || !a.transcript.empty())
       throw UsageError("build: give either --clips or --motion/--audio/--transcript, not both");
-    return listed_clips(a.clips, a.tier, a.skeleton);
+    return listed_clips(a.clips, a.tier, a.skeleton, a.allow_silence);
   }
   if (a.motion.empty()) throw UsageError("build: no reference given (--motion with --audio, or --clips FILE.csv|DIR)");
   if (a.motion.size() != a.audio.size())
@@ -64,7 +65,7 @@ std::vector<ReferenceFiles> clips_of(const BuildArgs& a) {
   for (std::size_t i = 0; i < a.motion.size(); ++i)
     clips.push_back({a.motion[i],
                      {a.audio[i], a.transcript.empty() ? "" : transcript_or_none(a.transcript[i]),
-                      text::parse_transcript_format(a.format), a.tier},
+                      text::parse_transcript_format(a.format), a.tier, a.allow_silence},
                      a.skeleton});
   return clips;
 }
@@ -101,10 +102,13 @@ void run_build(const BuildArgs& a) {
   }
   if (!a.skeleton.empty()) inputs.push_back({"--skeleton", a.skeleton});
   check_outputs_apart({{"-o", a.output}}, inputs);
+  check_outputs({{"-o", a.output, kGraphExtensions}});
   std::shared_ptr<batch::Progress> display;
   const BuildProgress progress = progress_display(a.progress, display);
-  const MotionGraph g = graph_build_from_files(clips, cfg, progress, a.jobs);
+  std::vector<std::string> warnings;
+  const MotionGraph g = graph_build_from_files(clips, cfg, progress, a.jobs, &warnings);
   if (display) display->finish();
+  print_warnings(warnings);
   graph_save(a.output, g);
   const GraphStats s = graph_stats(g);
   std::cout << "wrote " << a.output << ": " << s.frames << " frames";
@@ -130,10 +134,11 @@ void add_build_command(CLI::App& app) {
                   "instead of --motion/--audio: a folder of clips (BVH + WAV + optional transcript with matching "
                   "stems, flat or in bvh/ wav/ tsv/ subfolders) or a CSV manifest with header stem,bvh,wav,transcript; "
                   "repeatable; clips join in stem order");
-  cmd->add_option("--jobs,-j", a->jobs, "clips read at once (default 0: all cores)")->check(CLI::NonNegativeNumber);
+  whole_number(cmd->add_option("--jobs,-j", a->jobs, "clips read at once (default 0: all cores)"), kMaxJobs);
   cmd->add_option("--progress", a->progress, "auto (an updating line on a terminal), lines, or none")
       ->check(CLI::IsMember({"auto", "lines", "none"}));
-  cmd->add_option("-o,--output", a->output, "graph file to write")->required();
+  cmd->add_option("-o,--output", a->output, "graph file to write (.gmg)")->required();
+  add_allow_silence_flag(cmd, a->allow_silence);
   a->config.add(cmd, false);
   cmd->callback([a] { run_build(*a); });
 }

@@ -5,7 +5,9 @@
 // prints it and exits with 1, or with 2 for a UsageError.
 //
 // Conventions of every subcommand: exit 0 on success, 1 on an input or processing error, 2 on a
-// usage error (CLI11's parse errors and UsageError), each error one line "gmg: error: ...";
+// usage error (CLI11's parse errors, an unknown command or option, with the nearest name, and
+// UsageError), each error one line "gmg: error: ..." with its non-printable bytes escaped; an
+// interrupt ends the process by its signal (engine/core/interrupt.h);
 // `--help` shows every option's default; JSON output has snake_case keys and numbers in their
 // shortest round-trip form.
 #pragma once
@@ -24,7 +26,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace gmg {
 
@@ -43,9 +46,41 @@ struct ConfigOptions {
   std::optional<std::uint64_t> seed;
 
   void add(CLI::App* cmd, bool with_seed);
-  // The defaults, then the file, then each --set, then --seed; validated.
+  // The defaults, then the file, then each --set, then --seed; validated. A problem of the file
+  // is an Error naming it (exit 1); a --set that names no key, holds no valid value or breaks a
+  // rule is a UsageError (exit 2).
   Config make() const;
 };
+
+// The checks shared by the options of every subcommand (so options added later get them too):
+// a seed or count is a whole number from 0 to `max` ("-1" is refused, not wrapped to 2^64 - 1,
+// and 2^64 not saturated to it), a duration a number above 0, each refused with a short message.
+CLI::Option* whole_number(CLI::Option* option, std::uint64_t max = UINT64_MAX);
+CLI::Option* positive_number(CLI::Option* option);
+
+// The most --jobs a command takes: far above any machine's cores, far below what would make
+// thousands of threads.
+inline constexpr std::uint64_t kMaxJobs = 1024;
+
+// check_output_file (engine/core/files.h) for each output that is given: its kind, extension
+// and folder, before any work.
+struct OutputSpec {
+  std::string option;  // "-o"
+  std::string path;    // "" = not given
+  std::vector<std::string> extensions;
+};
+void check_outputs(const std::vector<OutputSpec>& outputs);
+
+// The extensions of each kind of output, spelled once.
+extern const std::vector<std::string> kJsonExtensions;   // .json
+extern const std::vector<std::string> kGraphExtensions;  // .gmg
+extern const std::vector<std::string> kCsvExtensions;    // .csv
+
+// "gmg: warning: <w>" on standard error for each, escaped (escape_nonprintable).
+void print_warnings(const std::vector<std::string>& warnings);
+
+// --allow-silence: take audio that cannot be speech as it is (SpeechFiles::allow_silence).
+void add_allow_silence_flag(CLI::App* cmd, bool& allow);
 
 // The files a config reads, for check_outputs_apart: the --config file and the keyword lexicon
 // (keywords=FILE).
@@ -67,8 +102,9 @@ void add_convert_command(CLI::App& app);
 // Registers the "batch" subcommand on app (with its own --config FILE and --set key=value options,
 // applied in that order, then --seed). Its callback runs batch_run with progress on std::cerr and
 // sets *exit_code: 0 every clip made or skipped, 1 some clip failed, 2 a setup error (printed as
-// one line "gmg: error: ..."), 130 interrupted by SIGINT/SIGTERM (the first signal lets clips
-// under way finish and writes the summary; a second one kills).
+// one line "gmg: error: ..."). Interrupted by SIGINT, SIGTERM or SIGHUP, the first signal lets
+// clips under way finish and writes the summary, then the process ends by the signal
+// (Interrupted, engine/core/interrupt.h); a second one ends it at once.
 void add_batch_command(CLI::App& app, int* exit_code);
 
 }  // namespace gmg

@@ -8,6 +8,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/evaluate/evaluate_files.h"
+#include "engine/evaluate/plot.h"
 
 namespace gmg {
 namespace {
@@ -31,11 +32,12 @@ void run_evaluate(EvaluateArgs& a) {
   for (const std::string& o : in.other_audio) inputs.push_back({"--other-audio", o});
   if (!in.other_audio.empty() && in.audio.empty()) throw UsageError("--other-audio needs --audio");
   check_outputs_apart({{"-o", a.output}, {"--plot", in.plot}}, inputs);
+  check_outputs({{"-o", a.output, kJsonExtensions}, {"--plot", in.plot, kPlotExtensions}});
   OutputTransaction outputs;  // the plot and the JSON, both or neither
   const EvaluateResult r = evaluate_files(in, a.options);
   if (!a.output.empty()) write_json_file(a.output, r.json);
   outputs.commit();
-  for (const std::string& w : r.warnings) std::cerr << "gmg: warning: " << w << "\n";
+  print_warnings(r.warnings);
   std::cout << json_dump(r.json, a.json ? -1 : 2) << "\n";
 }
 
@@ -63,7 +65,8 @@ void add_evaluate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--plot", in.plot, "draw speeds, onset strength, onsets and junctions over time (.png or .svg)");
   cmd->add_flag("--json", a->json, "print one JSON object on standard output");
-  cmd->add_option("-o,--output", a->output, "also write the JSON to this file");
+  cmd->add_option("-o,--output", a->output, "also write the JSON to this file (.json)");
+  add_allow_silence_flag(cmd, in.allow_silence);
   cmd->callback([a] { run_evaluate(*a); });
 }
 

@@ -1,4 +1,5 @@
 // `gmg inspect`: the counts of a built graph; DOT/GraphML exports.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <utility>
@@ -21,18 +22,26 @@ struct InspectArgs {
   bool json = false;
 };
 
-// --frames FROM:TO; either end may be left out (0 and `frames`).
-std::pair<int, int> parse_range(const std::string& text, int frames) {
-  if (text.empty()) return {0, frames};
+// --frames FROM:TO, frames FROM to TO - 1; either end may be left out (0, and -1 for the
+// graph's end). Checked before the graph is read: a range that cannot mean anything is a usage
+// error.
+std::pair<int, int> parse_range(const std::string& text) {
+  if (text.empty()) return {0, -1};
   const std::size_t colon = text.find(':');
-  if (colon == std::string::npos) throw UsageError("--frames expects FROM:TO, got '" + text + "'");
-  try {
-    const int from = colon == 0 ? 0 : std::stoi(text.substr(0, colon));
-    const int to = colon + 1 == text.size() ? frames : std::stoi(text.substr(colon + 1));
-    return {from, to};
-  } catch (const std::exception&) {
-    throw UsageError("--frames expects FROM:TO with whole numbers, got '" + text + "'");
-  }
+  if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos)
+    throw UsageError("--frames: '" + text + "' is not FROM:TO (e.g. 0:300)");
+  auto end = [&](const std::string& part, int missing) {
+    if (part.empty()) return missing;
+    const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits || part.size() > 9)
+      throw UsageError("--frames: '" + part + "' in '" + text + "' is not a frame number (0 or above)");
+    return std::stoi(part);
+  };
+  const int from = end(text.substr(0, colon), 0), to = end(text.substr(colon + 1), -1);
+  if (to >= 0 && from >= to)
+    throw UsageError("--frames: " + text + " is empty: FROM (" + std::to_string(from) + ") must be below TO (" +
+                     std::to_string(to) + ")");
+  return {from, to};
 }
 
 // One count: its snake_case JSON key and its text label (SPEC "Command line": `onset nodes: 115`).
@@ -61,9 +70,15 @@ std::vector<Count> counts(const MotionGraph& g) {
 }
 
 void run_inspect(const InspectArgs& a) {
+  auto [from, to] = parse_range(a.frames);
   check_outputs_apart({{"--dot", a.dot}, {"--graphml", a.graphml}}, {{"graph", a.graph}});
+  check_outputs({{"--dot", a.dot, {".dot", ".gv"}}, {"--graphml", a.graphml, {".graphml", ".xml"}}});
   OutputTransaction outputs;
   const MotionGraph g = graph_load(a.graph);
+  if (to < 0) to = g.frame_count();
+  if ((!a.dot.empty() || !a.graphml.empty()) && (from >= g.frame_count() || to > g.frame_count()))
+    throw Error(a.graph + ": --frames " + a.frames + " reaches past its " + std::to_string(g.frame_count()) +
+                " frames (0:" + std::to_string(g.frame_count()) + ")");
   const std::vector<Count> c = counts(g);
   if (a.json) {
     nlohmann::ordered_json j;
@@ -75,7 +90,6 @@ void run_inspect(const InspectArgs& a) {
       std::cout << "clip: " << clip.name << " (frames " << clip.first_frame << ".."
                 << clip.first_frame + clip.frame_count - 1 << ")\n";
   }
-  const auto [from, to] = parse_range(a.frames, g.frame_count());
   if (!a.dot.empty()) graph_write_dot(a.dot, g, from, to);
   if (!a.graphml.empty()) graph_write_graphml(a.graphml, g, from, to);
   g.check_unchanged();

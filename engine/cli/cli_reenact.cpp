@@ -19,6 +19,7 @@ struct ReenactArgs {
   std::string graph, audio, transcript, output, report, format = "auto";
   std::string ref_motion, ref_audio, ref_transcript, skeleton, tier, betas;
   ConfigOptions config;
+  bool allow_silence = false;
 };
 
 void run_reenact(const ReenactArgs& a) {
@@ -34,25 +35,32 @@ void run_reenact(const ReenactArgs& a) {
                                    {"--skeleton", a.skeleton},
                                    {"--betas", a.betas}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
+  if (a.graph.empty() && a.ref_audio.empty()) throw UsageError("reenact: --reference-motion needs --reference-audio");
   check_outputs_apart({{"-o", a.output}, {"--report", a.report}}, inputs);
+  check_outputs({{"-o", a.output, kMotionWriteExtensions}, {"--report", a.report, kJsonExtensions}});
   // Read first: a bad file stops the command before the long work.
   const std::vector<double> betas = a.betas.empty() ? std::vector<double>() : read_betas_file(a.betas);
   OutputTransaction outputs;  // the BVH and the report, both or neither
   MotionGraph g;
   std::string graph_name = a.graph;
+  std::vector<std::string> warnings;
   if (!a.graph.empty()) {
     g = graph_load(a.graph);
+    const std::string lock_note = check_lock_joints_of_graph(g, cfg, a.graph);
+    if (!lock_note.empty()) warnings.push_back(lock_note);
   } else {
-    if (a.ref_audio.empty()) throw UsageError("reenact: --reference-motion needs --reference-audio");
     g = graph_build_from_files(
         {{a.ref_motion,
-          {a.ref_audio, transcript_or_none(a.ref_transcript), text::TranscriptFormat::Auto, a.tier},
+          {a.ref_audio, transcript_or_none(a.ref_transcript), text::TranscriptFormat::Auto, a.tier, a.allow_silence},
           a.skeleton}},
-        cfg);
+        cfg, {}, 1, &warnings);
     graph_name = a.ref_motion;
   }
+  print_warnings(warnings);
   Reenactment r = reenact(
-      g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier}, cfg, graph_name);
+      g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier, a.allow_silence},
+      cfg, graph_name);
+  print_warnings(r.warnings);
   if (!a.betas.empty()) reenactment_use_betas(r, betas, a.betas);
   motion_write(a.output, r.motion, r.body);
   if (!a.report.empty()) write_json_file(a.report, r.report);
@@ -83,7 +91,8 @@ void add_reenact_command(CLI::App& app) {
   cmd->add_option("-o,--output", a->output,
                   "motion to write: .bvh, or .npz (SMPL-X as BEAT2 ships it, with the reference's shape and face)")
       ->required();
-  cmd->add_option("--report", a->report, "JSON report to write");
+  cmd->add_option("--report", a->report, "JSON report to write (.json)");
+  add_allow_silence_flag(cmd, a->allow_silence);
   a->config.add(cmd, true);
   cmd->callback([a] { run_reenact(*a); });
 }

@@ -30,6 +30,11 @@ void parse_size(const std::string& text, render::RenderOptions& o) {
     throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 640x480)");
   o.width = w;
   o.height = h;
+  try {
+    render::check_size(o);
+  } catch (const Error& e) {
+    throw UsageError(e.what());  // an option out of range, not an input's problem
+  }
 }
 
 void run_render(RenderArgs& a) {
@@ -46,7 +51,7 @@ void run_render(RenderArgs& a) {
                      format_number(a.options.from_s));
   const render::RenderSummary r =
       a.still ? render::render_still(a.inputs, a.options, *a.still) : render::render_video(a.inputs, a.options);
-  for (const std::string& n : r.notes) std::cerr << "gmg: warning: " << n << "\n";
+  print_warnings(r.notes);
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (a.still) {
     std::cout << "wrote " << a.inputs.output << ": the frame at " << format_number(*a.still) << " s, " << r.width << "x"

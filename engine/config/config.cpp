@@ -116,7 +116,12 @@ Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*fi
   return {{name, help},
           [=, &table](Config& c, const std::string& v) {
             const std::optional<E> e = enum_from_name(table, v);
-            if (!e) throw Error(std::string("config key '") + name + "': '" + v + "' is not " + enum_choices(table));
+            if (!e) {
+              std::vector<std::string> names;
+              for (const EnumName<E>& n : table) names.emplace_back(n.name);
+              throw Error(std::string("config key '") + name + "': '" + v + "' is not " + enum_choices(table) +
+                          did_you_mean(v, names));
+            }
             (c.*group).*field = *e;
           },
           [=, &table](const Config& c) { return std::string(enum_name(table, (c.*group).*field)); }};
@@ -250,7 +255,10 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
 const Accessor& find_accessor(const std::string& key) {
   for (const Accessor& a : accessors())
     if (a.key.name == key) return a;
-  throw Error("unknown config key '" + key + "' (run 'gmg config' for the list)");
+  std::vector<std::string> names;
+  for (const Accessor& a : accessors()) names.push_back(a.key.name);
+  const std::string near = did_you_mean(key, names);
+  throw Error("unknown config key '" + key + "'" + (near.empty() ? " (run 'gmg config --keys' for the list)" : near));
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace fs = std::filesystem;
@@ -37,7 +38,25 @@ TemporarySlot g_temporaries[kSlots];
 
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
-extern "C" void cleanup_and_die(int sig) { remove_temporaries_and_die(sig); }
+// "<program>: interrupted by " when InterruptCleanup was given a program name; written by the
+// handler with write(2), so it is fixed before any signal can come.
+char g_interrupt_message[128] = {0};
+
+void write_stderr(const char* text) noexcept {
+  const std::size_t n = std::strlen(text);
+  if (n > 0 && ::write(2, text, n) < 0) {
+    // nothing to do: the process is about to end
+  }
+}
+
+extern "C" void cleanup_and_die(int sig) {
+  if (g_interrupt_message[0] != '\0') {
+    write_stderr(g_interrupt_message);
+    write_stderr(sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "a signal");
+    write_stderr("; no output written\n");
+  }
+  remove_temporaries_and_die(sig);
+}
 
 }  // namespace
 
@@ -75,7 +94,12 @@ struct InterruptCleanup::Saved {
   struct sigaction old[std::size(kCleanupSignals)];
 };
 
-InterruptCleanup::InterruptCleanup() : saved_(new Saved) {
+InterruptCleanup::InterruptCleanup(const char* program) : saved_(new Saved) {
+  g_interrupt_message[0] = '\0';
+  if (program != nullptr && std::strlen(program) + 24 < sizeof g_interrupt_message) {
+    std::strcpy(g_interrupt_message, program);
+    std::strcat(g_interrupt_message, ": interrupted by ");
+  }
   struct sigaction sa {};
   sa.sa_handler = cleanup_and_die;
   sigemptyset(&sa.sa_mask);
@@ -84,6 +108,7 @@ InterruptCleanup::InterruptCleanup() : saved_(new Saved) {
 }
 
 InterruptCleanup::~InterruptCleanup() {
+  g_interrupt_message[0] = '\0';
   for (std::size_t i = 0; i < std::size(kCleanupSignals); ++i)
     ::sigaction(kCleanupSignals[i], &saved_->old[i], nullptr);
   delete saved_;
@@ -112,8 +137,7 @@ void rename_into_place(const std::string& temp, const std::string& path) {
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
-  static std::atomic<unsigned> counter{0};
-  const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string temp = temporary_name_for(path);
   const int slot = register_temporary_file(temp);  // before the file exists, so a signal never misses it
   auto abandon = [&] {
     remove_quietly(temp);
@@ -133,11 +157,13 @@ void write_file_atomically(const std::string& path, const std::function<void(std
       abandon();
       throw;
     }
+    if (out) errno = 0;  // else keep the reason of the write that failed
     out.flush();
     if (!out) {
+      const int err = errno;  // the failing write's reason (ENOSPC on a full disk), when it kept it
       out.close();
       abandon();
-      throw Error(path + ": write failed (disk full or unwritable?)");
+      throw Error(path + ": cannot write (" + (err != 0 ? std::strerror(err) : "the disk may be full") + ")");
     }
   }
   if (t_transaction) {
@@ -151,6 +177,27 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     throw;
   }
   unregister_temporary_file(slot);
+}
+
+CreatedFolders::CreatedFolders(const std::string& dir) {
+  std::error_code ec;
+  for (fs::path p(dir); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created_.push_back(p.string());
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec)) {
+    const std::string reason = ec ? ec.message() : "a file of that name is in the way";
+    remove_created();
+    throw Error(dir + ": cannot create the folder (" + reason + ")");
+  }
+}
+
+CreatedFolders::~CreatedFolders() { remove_created(); }
+
+void CreatedFolders::remove_created() noexcept {
+  for (const std::string& d : created_) {
+    std::error_code ec;
+    if (!fs::remove(d, ec)) break;  // not empty (or gone): the ones above are not empty either
+  }
+  created_.clear();
 }
 
 OutputTransaction::OutputTransaction() : previous_(t_transaction) { t_transaction = this; }
@@ -240,6 +287,109 @@ void check_outputs_apart(const std::vector<NamedFile>& outputs, const std::vecto
                   "; each output needs its own file");
     }
   }
+}
+
+// ---- Outputs that can be written --------------------------------------------------------------
+
+namespace {
+
+const char* kind_of(mode_t mode);
+
+std::string option_text(const NamedFile& f) { return f.option.empty() ? std::string() : f.option + " "; }
+
+// The reason a folder cannot take new files ("Permission denied", "Read-only file system"), or
+// "" when it can. access(2) also sees a read-only mount, which the permission bits do not show.
+std::string unwritable_reason(const fs::path& dir) {
+  if (::access(dir.empty() ? "." : dir.c_str(), W_OK | X_OK) == 0) return "";
+  return std::strerror(errno);
+}
+
+}  // namespace
+
+std::string extension_list(const std::vector<std::string>& extensions) {
+  std::string out;
+  for (std::size_t i = 0; i < extensions.size(); ++i) {
+    if (i > 0) out += i + 1 == extensions.size() ? " or " : ", ";
+    out += extensions[i];
+  }
+  return out;
+}
+
+void check_output_file(const NamedFile& output, const std::vector<std::string>& extensions) {
+  const std::string& path = output.path;
+  if (path.empty()) return;
+  const std::string opt = option_text(output);
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw Error(path + ": " + opt + "is a folder, not a file");
+    if (!S_ISREG(st.st_mode)) throw Error(path + ": " + opt + "is " + kind_of(st.st_mode) + ", not a regular file");
+  }
+  if (!extensions.empty() &&
+      std::none_of(extensions.begin(), extensions.end(), [&](const std::string& e) { return ends_with_ci(path, e); }))
+    throw Error(path + ": " + opt + "must be a " + extension_list(extensions) +
+                " file (its extension chooses the format)");
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw Error(path + ": " + (opt.empty() ? "" : output.option + ": ") + "the folder " + parent.string() +
+                " does not exist");
+  const std::string reason = unwritable_reason(parent);
+  if (!reason.empty())
+    throw Error(path + ": " + (opt.empty() ? "" : output.option + ": ") + "cannot write into the folder " +
+                (parent.empty() ? std::string(".") : parent.string()) + " (" + reason + ")");
+}
+
+void check_output_folder(const NamedFile& output) {
+  const std::string& path = output.path;
+  if (path.empty()) return;
+  const std::string opt = option_text(output);
+  std::error_code ec;
+  fs::path dir(path);
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+    throw Error(path + ": " + opt + "is " + (S_ISREG(st.st_mode) ? "a file" : kind_of(st.st_mode)) + ", not a folder");
+  // The folder itself when it exists, else the nearest one above it (where it will be created).
+  while (!dir.empty() && !fs::exists(dir, ec)) dir = dir.parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    throw Error(path + ": " + (opt.empty() ? "" : output.option + ": ") + dir.string() + " is a file, not a folder");
+  const std::string reason = unwritable_reason(dir);
+  if (!reason.empty())
+    throw Error(path + ": " + (opt.empty() ? "" : output.option + ": ") + "cannot write into the folder " +
+                (dir.empty() ? std::string(".") : dir.string()) + " (" + reason + ")");
+}
+
+long temporary_file_owner(const std::string& name) {
+  const std::size_t pos = name.rfind(".tmp");
+  if (pos == std::string::npos || pos == 0) return 0;
+  const std::string tail = name.substr(pos + 4);
+  const std::size_t us = tail.find('_');
+  if (us == std::string::npos || us == 0 || us + 1 >= tail.size() || us > 9) return 0;
+  if (!std::all_of(tail.begin(), tail.end(), [](char c) { return (c >= '0' && c <= '9') || c == '_'; })) return 0;
+  return std::stol(tail.substr(0, us));
+}
+
+int remove_stale_temporaries(const std::string& dir, const std::vector<std::string>& extensions) {
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(dir.empty() ? fs::path(".") : fs::path(dir), ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const long pid = temporary_file_owner(name);
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    const std::string base = name.substr(0, name.rfind(".tmp"));
+    if (std::none_of(extensions.begin(), extensions.end(),
+                     [&](const std::string& e) { return base.size() > e.size() && ends_with_ci(base, e); }))
+      continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM) continue;  // still running
+    std::error_code ec2;
+    if (fs::remove(it->path(), ec2)) ++removed;
+  }
+  return removed;
+}
+
+std::string temporary_name_for(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  return path + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
 }
 
 // ---- Reading ------------------------------------------------------------------------------------

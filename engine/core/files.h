@@ -93,6 +93,23 @@ void rename_into_place(const std::string& temp, const std::string& path);
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                            bool binary = false);
 
+// Creates the folder `dir` and the missing ones above it (gmg::Error naming dir and the reason
+// when it cannot); destroyed without keep(), it removes the folders it created, deepest first,
+// as long as they are empty, so a command that fails (a full disk) leaves no empty folder behind.
+// Put it outside the command's OutputTransaction, whose temporary files must go first.
+class CreatedFolders {
+ public:
+  explicit CreatedFolders(const std::string& dir);
+  ~CreatedFolders();
+  CreatedFolders(const CreatedFolders&) = delete;
+  CreatedFolders& operator=(const CreatedFolders&) = delete;
+  void keep() { created_.clear(); }
+
+ private:
+  void remove_created() noexcept;
+  std::vector<std::string> created_;  // deepest first
+};
+
 // The files one command writes, all or nothing. While it is open (on this thread),
 // write_file_atomically leaves each finished temporary file in place; commit() renames them all
 // into place; destroyed without a commit (an exception, an error in a later step) it removes
@@ -125,6 +142,20 @@ class OutputTransaction {
   OutputTransaction* previous_ = nullptr;
 };
 
+// The owner of a temporary file named as write_file_atomically names them, "<name>.tmp<pid>_<n>":
+// its process id, or 0 for any other name.
+long temporary_file_owner(const std::string& file_name);
+
+// Removes the temporary files in `dir` whose owner process is gone (a killed run's: SIGKILL
+// cannot be caught) and whose <name> ends in one of `extensions` (ASCII case-insensitive; the
+// files of other programs and of live processes are kept). Returns how many it removed.
+int remove_stale_temporaries(const std::string& dir, const std::vector<std::string>& extensions);
+
+// A temporary name for `path` (write_file_atomically's form, unique in this process) that
+// remove_stale_temporaries recognises, for temporary files another program writes (the video
+// of `gmg render`).
+std::string temporary_name_for(const std::string& path);
+
 // ---- Outputs apart from inputs ------------------------------------------------------------------
 
 // A file named on the command line, with the option that named it ("-o", "--audio").
@@ -132,6 +163,23 @@ struct NamedFile {
   std::string option;
   std::string path;
 };
+
+// Throws gmg::Error before any work when `output` cannot be written as the file it names, so a
+// job never does its work for an output it cannot write (the option is left out of the message
+// when empty; each check names the file first, then the cause):
+//   "out.txt: -o must be a .bvh or .npz file (its extension chooses the format)"  (extensions:
+//       ASCII case-insensitive, with the dot; empty = any)
+//   "out: -o is a folder, not a file"   (also a FIFO, a device, a socket: "is a FIFO (named pipe)")
+//   "a/b/out.bvh: -o: the folder a/b does not exist"
+//   "ro/out.bvh: -o: cannot write into the folder ro (Read-only file system)"
+void check_output_file(const NamedFile& output, const std::vector<std::string>& extensions);
+
+// The same for an output folder (created when missing): "out: -o is a file, not a folder", and
+// the folder, or the nearest one above it that exists, must be writable.
+void check_output_folder(const NamedFile& output);
+
+// " or ": ".bvh or .npz", ".mp4, .mkv or .mov".
+std::string extension_list(const std::vector<std::string>& extensions);
 
 // Throws gmg::Error before any work when an output is an input (the same file, also through a
 // symbolic or hard link: compared with std::filesystem::equivalent) or two outputs are the same
@@ -153,12 +201,14 @@ void remove_registered_temporary_files() noexcept;
 void remove_temporaries_and_die(int sig) noexcept;
 
 // While alive, SIGINT, SIGTERM and SIGHUP remove the registered temporary files and then end the
-// process as the signal would (the previous handlers are restored on destruction). cli_main
-// holds one for every subcommand; `gmg batch` installs its own graceful handler on top, which
-// calls remove_registered_temporary_files before dying on a second signal.
+// process as the signal would (the previous handlers are restored on destruction; the exit
+// contract is in engine/core/interrupt.h). With a program name, the handler first writes
+// "<program>: interrupted by SIGINT; no output written" on standard error. cli_main holds one
+// for every subcommand; `gmg batch` and `gmg render` install a graceful handler on top
+// (InterruptFlag), which removes the temporary files before dying on a second signal.
 class InterruptCleanup {
  public:
-  InterruptCleanup();
+  explicit InterruptCleanup(const char* program = nullptr);
   ~InterruptCleanup();
   InterruptCleanup(const InterruptCleanup&) = delete;
   InterruptCleanup& operator=(const InterruptCleanup&) = delete;

@@ -1,5 +1,6 @@
 #include "engine/core/strings.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -140,6 +141,80 @@ std::string to_valid_utf8(std::string_view s) {
     }
   }
   return out;
+}
+
+std::string escape_nonprintable(std::string_view s) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  out.reserve(s.size());
+  std::size_t pos = 0;
+  while (pos < s.size()) {
+    const auto c = static_cast<unsigned char>(s[pos]);
+    if (c >= 0x20 && c < 0x7F) {
+      out += static_cast<char>(c);
+      ++pos;
+      continue;
+    }
+    if (c == '\n' || c == '\r' || c == '\t') {
+      out += c == '\n' ? "\\n" : c == '\r' ? "\\r" : "\\t";
+      ++pos;
+      continue;
+    }
+    const std::optional<Utf8Char> u = c >= 0x80 ? decode_utf8(s, pos) : std::nullopt;
+    if (u && u->code_point >= 0xA0) {
+      out.append(s.substr(pos, u->length));
+      pos += u->length;
+    } else if (u) {  // a C1 control: terminals take U+009B as the start of an escape sequence
+      out += "\\u00";
+      out += kHex[(u->code_point >> 4) & 0xF];
+      out += kHex[u->code_point & 0xF];
+      pos += u->length;
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xF];
+      ++pos;
+    }
+  }
+  return out;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  // Three rows of the dynamic programme: the swap looks two rows back.
+  std::vector<std::size_t> before(b.size() + 1), previous(b.size() + 1), current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        current[j] = std::min(current[j], before[j - 2] + 1);
+    }
+    before.swap(previous);
+    previous.swap(current);
+  }
+  return previous[b.size()];
+}
+
+std::optional<std::string> nearest_name(std::string_view word, const std::vector<std::string>& names) {
+  const std::string lower = ascii_lower(word);
+  std::optional<std::string> best;
+  std::size_t best_distance = 3;
+  for (const std::string& name : names) {
+    if (name == word) return std::nullopt;
+    const std::size_t d = edit_distance(lower, ascii_lower(name));
+    if (d < best_distance && 2 * d < word.size()) {
+      best = name;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& names) {
+  const std::optional<std::string> near = nearest_name(word, names);
+  return near ? " (did you mean '" + *near + "'?)" : std::string();
 }
 
 }  // namespace gmg

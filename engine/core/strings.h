@@ -66,4 +66,24 @@ std::optional<Utf8Char> decode_utf8(std::string_view s, std::size_t pos);
 // Latin-1 file name can never make a writer throw.
 std::string to_valid_utf8(std::string_view s);
 
+// s with every byte a terminal could act on or mis-show written as an escape, so a message that
+// quotes a file's bytes (a binary file given as a BVH) prints as one readable line: control
+// characters as \n, \r, \t or \xNN, DEL and bytes that do not start well-formed UTF-8
+// (decode_utf8) as \xNN, the C1 controls U+0080..U+009F as \u0080..\u009f, a backslash as
+// itself. Printable ASCII and well-formed UTF-8 text stay as they are.
+std::string escape_nonprintable(std::string_view s);
+
+// The optimal-string-alignment distance of a and b: insertions, deletions, substitutions and
+// swaps of two neighbouring characters each count 1 ("biuld" is 1 from "build"). Byte-wise.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The name of `names` nearest to `word` (edit_distance of their ASCII lower case) when it is a
+// plausible typo: at most 2 edits, and fewer than half of word's length (so "-x" suggests
+// nothing); the first of equally near names. nullopt when none is, or when word is one of names.
+std::optional<std::string> nearest_name(std::string_view word, const std::vector<std::string>& names);
+
+// " (did you mean 'build'?)" for nearest_name(word, names), or "" when there is none: the tail
+// of every "unknown ..." message.
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& names);
+
 }  // namespace gmg

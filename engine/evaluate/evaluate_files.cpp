@@ -1,6 +1,11 @@
 #include "engine/evaluate/evaluate_files.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "audio/audio_file.h"
+#include "audio/speech_check.h"
+#include "audio/speech_energy.h"
 #include "engine/core/error.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
@@ -26,6 +31,30 @@ std::vector<Motion> read_reference_clips(const std::string& path, const std::str
   return clips;
 }
 
+namespace {
+
+// "x: lasts 3.0 s but the motion y lasts 5.0 s: ..." when speech and motion differ by more than
+// kMaxEvaluateDurationMismatchS; "" otherwise.
+std::string length_warning(const std::string& path, double sound_s, const std::string& motion_name, double motion_s) {
+  if (std::abs(sound_s - motion_s) <= kMaxEvaluateDurationMismatchS) return "";
+  char text[128];
+  std::snprintf(text, sizeof text, ": lasts %.1f s but the motion ", sound_s);
+  char tail[128];
+  std::snprintf(tail, sizeof tail, " lasts %.1f s: the sync metrics compare them from their starts", motion_s);
+  return path + text + motion_name + tail;
+}
+
+}  // namespace
+
+audio::Audio read_evaluated_speech(const std::string& path, bool allow_silence, std::vector<std::string>& warnings) {
+  audio::Audio sound = audio::read_audio(path, &warnings);
+  if (!allow_silence) {
+    const std::string problem = audio::speech_level_problem(sound.duration(), audio::energy_track(sound));
+    if (!problem.empty()) throw Error(audio::speech_refusal(path, problem, warnings));
+  }
+  return sound;
+}
+
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
   EvaluateLoaded l;
   l.generated = motion_read(in.generated, in.skeleton);
@@ -35,10 +64,11 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
     l.truth_name = in.truth;
   }
   if (!in.audio.empty()) {
-    l.audio = audio::read_audio(in.audio);
+    l.audio = read_evaluated_speech(in.audio, in.allow_silence, l.warnings);
     l.audio_name = in.audio;
   }
-  for (const std::string& path : in.other_audio) l.other_audio.push_back(audio::read_audio(path));
+  for (const std::string& path : in.other_audio)
+    l.other_audio.push_back(read_evaluated_speech(path, in.allow_silence, l.warnings));
   l.other_audio_names = in.other_audio;
   if (!in.reference.empty()) l.reference = read_reference_clips(in.reference, in.skeleton);
   l.reference_name = in.reference;
@@ -64,6 +94,12 @@ EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options
                               (&longer == &truth ? in.truth_name : in.generated_name) + " (" +
                               std::to_string(longer.frame_count) + " -> " + std::to_string(keep) + ")");
     longer = motion_slice(longer, 0, keep);
+  }
+  for (const std::string& w : in.warnings) result.warnings.push_back(w);
+  if (has_audio) {  // the other audio is mismatched by design: its length is no mistake
+    const double generated_s = generated.fps > 0 ? generated.frame_count / generated.fps : 0.0;
+    const std::string w = length_warning(in.audio_name, in.audio.duration(), in.generated_name, generated_s);
+    if (!w.empty()) result.warnings.push_back(w);
   }
   ReportFacts facts;
   if (has_report) facts = report_facts_of(in.report, generated.fps, in.report_name);

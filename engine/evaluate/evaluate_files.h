@@ -23,11 +23,19 @@ struct EvaluateInputs {
   std::string reference;                 // the reference capture: a BVH or a graph (.gmg); "" = none
   bool trim = false;  // cut the longer of generated and truth to the shorter (a warning says by how much)
   std::string plot;   // write a picture (.png or .svg); "" = none
+  // Take speech that cannot be speech as it is (audio/speech_check.h: shorter than 0.5 s or
+  // silent); false: an error naming the file.
+  bool allow_silence = false;
 };
+
+// Speech and motion durations further apart than this get a warning naming both (the sync
+// metrics compare them from their starts).
+inline constexpr double kMaxEvaluateDurationMismatchS = 1.0;
 
 struct EvaluateResult {
   nlohmann::ordered_json json;
-  std::vector<std::string> warnings;  // for standard error, e.g. what --trim cut
+  std::vector<std::string> warnings;  // for standard error, each naming its file: what --trim cut, decoder
+                                      // damage, speech and motion of different lengths
 };
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options);
@@ -49,9 +57,15 @@ struct EvaluateLoaded {
   std::string report_name;
   bool trim = false;
   std::string plot;
+  std::vector<std::string> warnings;  // of reading the inputs (decoder damage), each naming its file
 };
 
 EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options);
+
+// Speech as evaluate_files reads it: decoder damage goes into `warnings`; audio that cannot be
+// speech (audio/speech_check.h: shorter than 0.5 s or silent) is a gmg::Error naming the file
+// unless allow_silence.
+audio::Audio read_evaluated_speech(const std::string& path, bool allow_silence, std::vector<std::string>& warnings);
 
 // The reference clips evaluate_files reads from `path`: a graph's clips (.gmg), else one motion.
 std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton);

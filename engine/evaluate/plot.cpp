@@ -128,6 +128,8 @@ void draw(cairo_t* cr, const EvaluationPlot& plot) {
 
 }  // namespace
 
+const std::vector<std::string> kPlotExtensions = {".png", ".svg"};
+
 void plot_write(const std::string& path, const EvaluationPlot& plot) {
   const bool svg = ends_with_ci(path, ".svg");
   if (!svg && !ends_with_ci(path, ".png")) throw Error(path + ": the plot must be a .png or .svg file");

@@ -23,6 +23,9 @@ struct EvaluationPlot {
 // Mean over joints of the root-relative joint speed (cm/s) at each frame (frame 0 takes frame 1's).
 std::vector<double> mean_joint_speed(const Eigen::MatrixXd& pos, double fps);
 
+// The picture formats plot_write writes: {".png", ".svg"}.
+extern const std::vector<std::string> kPlotExtensions;
+
 // Writes the picture atomically. gmg::Error naming the file for an extension other than .png or
 // .svg, an empty speed curve, or a failed write.
 void plot_write(const std::string& path, const EvaluationPlot& plot);

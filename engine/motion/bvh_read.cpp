@@ -21,6 +21,12 @@ class Tokenizer {
  public:
   Tokenizer(const std::string& text, const std::string& name) : text_(text), name_(name) {}
 
+  // A token as a message quotes it: at most 40 bytes, non-printable bytes escaped (a binary file
+  // given as a BVH must not print its bytes on the terminal).
+  static std::string quote(const std::string& t) {
+    return "'" + escape_nonprintable(t.substr(0, 40)) + (t.size() > 40 ? "...'" : "'");
+  }
+
   // Next token, or "" at end of text.
   std::string next() {
     skip_space();
@@ -38,7 +44,7 @@ class Tokenizer {
 
   void expect(const char* word) {
     const std::string t = next();
-    if (t != word) fail("expected '" + std::string(word) + "', found " + (t.empty() ? "end of file" : "'" + t + "'"));
+    if (t != word) fail("expected '" + std::string(word) + "', found " + (t.empty() ? "end of file" : quote(t)));
   }
 
   double number(const char* what) {
@@ -46,8 +52,8 @@ class Tokenizer {
     double value = 0.0;
     const auto res = std::from_chars(t.data(), t.data() + t.size(), value);
     if (res.ec != std::errc() || res.ptr != t.data() + t.size())
-      fail("expected a number for " + std::string(what) + ", found '" + t + "'");
-    if (!std::isfinite(value)) fail(std::string(what) + " is not finite ('" + t + "')");
+      fail("expected a number for " + std::string(what) + ", found " + quote(t));
+    if (!std::isfinite(value)) fail(std::string(what) + " is not finite (" + quote(t) + ")");
     return value;
   }
 
@@ -108,9 +114,10 @@ void read_channels(Tokenizer& tok, Joint& joint) {
     const std::string name = tok.expect_any("a channel name");
     Channel c;
     if (!parse_channel(name, &c))
-      tok.fail("unknown channel '" + name + "' (joint '" + joint.name + "' declares " +
+      tok.fail("unknown channel " + Tokenizer::quote(name) + " (joint " + Tokenizer::quote(joint.name) + " declares " +
                std::to_string(static_cast<int>(count)) + " channels)");
-    if (seen[static_cast<int>(c)]) tok.fail("channel '" + name + "' listed twice for joint '" + joint.name + "'");
+    if (seen[static_cast<int>(c)])
+      tok.fail("channel " + Tokenizer::quote(name) + " listed twice for joint " + Tokenizer::quote(joint.name));
     seen[static_cast<int>(c)] = true;
     joint.channels.push_back(c);
   }
@@ -127,7 +134,7 @@ std::string begin_joint(Tokenizer& tok, Skeleton& sk, int parent) {
   joint.parent = parent;
   joint.name = tok.rest_of_line();
   if (joint.name.empty()) tok.fail("joint without a name");
-  if (sk.find(joint.name) >= 0) tok.fail("duplicate joint name '" + joint.name + "'");
+  if (sk.find(joint.name) >= 0) tok.fail("duplicate joint name " + Tokenizer::quote(joint.name));
   tok.expect("{");
   tok.expect("OFFSET");
   joint.offset = read_offset(tok, "OFFSET x", "OFFSET y", "OFFSET z");
@@ -168,7 +175,8 @@ void parse_hierarchy(Tokenizer& tok, Skeleton& sk) {
       sk.joints[index].end_site = end;
       t = tok.expect_any("'}'");
     } else {
-      tok.fail("expected JOINT, End Site or '}' in joint '" + sk.joints[index].name + "', found '" + t + "'");
+      tok.fail("expected JOINT, End Site or '}' in joint " + Tokenizer::quote(sk.joints[index].name) + ", found " +
+               Tokenizer::quote(t));
     }
   }
 }
@@ -178,7 +186,7 @@ void parse_hierarchy(Tokenizer& tok, Skeleton& sk) {
 int parse_motion_header(Tokenizer& tok, Motion& m, std::size_t file_size) {
   std::string t = tok.expect_any("MOTION");
   if (t == "ROOT") tok.fail("more than one ROOT: only single-root skeletons are supported");
-  if (t != "MOTION") tok.fail("expected MOTION, found '" + t + "'");
+  if (t != "MOTION") tok.fail("expected MOTION, found " + Tokenizer::quote(t));
   tok.expect("Frames:");
   const double frames = tok.number("Frames");
   if (frames < 0 || frames != std::floor(frames) || frames > limits::kMaxFrames)
@@ -224,13 +232,13 @@ bool parse_frame_line(const char* begin, const char* end, std::vector<double>& v
     double v = 0.0;
     const auto res = std::from_chars(p, token_end, v);
     if (res.ec != std::errc() || res.ptr != token_end)
-      throw Error(error_at_line(
-          name, line,
-          "value " + std::to_string(values.size() + 1) + " is not a number: '" + std::string(p, token_end) + "'"));
+      throw Error(error_at_line(name, line,
+                                "value " + std::to_string(values.size() + 1) +
+                                    " is not a number: " + Tokenizer::quote(std::string(p, token_end))));
     if (!std::isfinite(v))
-      throw Error(error_at_line(
-          name, line,
-          "value " + std::to_string(values.size() + 1) + " is not finite: '" + std::string(p, token_end) + "'"));
+      throw Error(error_at_line(name, line,
+                                "value " + std::to_string(values.size() + 1) +
+                                    " is not finite: " + Tokenizer::quote(std::string(p, token_end))));
     values.push_back(v);
     p = token_end;
   }
@@ -305,7 +313,7 @@ Motion bvh_parse(const std::string& text, const std::string& name) {
     const std::string t(strip_utf8_bom(tok.next()));
     if (t != "HIERARCHY")
       tok.fail(t.empty() ? "empty file, expected HIERARCHY"
-                         : "not a BVH file: expected HIERARCHY, found '" + t.substr(0, 40) + "'");
+                         : "not a BVH file: expected HIERARCHY, found " + Tokenizer::quote(t));
     tok.expect("ROOT");
     Motion m;
     parse_hierarchy(tok, m.skeleton);

@@ -6,6 +6,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/math.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace {
@@ -88,8 +89,10 @@ void motion_lock_and_smooth(Motion& m, const std::vector<std::string>& joints, i
   for (const std::string& name : joints) {
     const int j = m.skeleton.find(name);
     if (j < 0) {
+      std::vector<std::string> names;
+      for (const Joint& joint : m.skeleton.joints) names.push_back(joint.name);
       std::string message = what;
-      message += ": clean-up joint '" + name + "' is not in the skeleton";
+      message += ": clean-up joint '" + name + "' (lock_joints) is not in the skeleton" + did_you_mean(name, names);
       throw Error(message);
     }
     const glm::dvec3 axis = bone_axis(m.skeleton, j);

@@ -38,7 +38,10 @@ Motion motion_read(const std::string& path, const std::string& skeleton_template
   return npz_read(path, bvh_read(skeleton_template).skeleton, out_body);
 }
 
+const std::vector<std::string> kMotionWriteExtensions = {".bvh", ".npz"};
+
 void motion_write(const std::string& path, const Motion& m, const SmplxBody& body, NpzFloats floats) {
+  check_output_file({"", path}, kMotionWriteExtensions);
   if (is_npz_path(path))
     npz_write(path, m, body, floats);
   else
@@ -47,6 +50,7 @@ void motion_write(const std::string& path, const Motion& m, const SmplxBody& bod
 
 ConvertSummary motion_convert(const std::string& in, const std::string& out, const ConvertOptions& options) {
   check_outputs_apart({{"OUT", out}}, {{"IN", in}, {"--skeleton", options.skeleton}, {"--betas", options.betas}});
+  check_output_file({"OUT", out}, kMotionWriteExtensions);  // before any work
   const std::vector<double> betas = options.betas.empty() ? std::vector<double>() : read_betas_file(options.betas);
   SmplxBody body;
   const Motion m = motion_read(in, options.skeleton, &body);

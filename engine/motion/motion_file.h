@@ -20,8 +20,13 @@ bool is_npz_path(const std::string& path);
 // the .npz's body (shape, face) is read too; a BVH has none (out_body is cleared).
 Motion motion_read(const std::string& path, const std::string& skeleton_template = "", SmplxBody* out_body = nullptr);
 
-// Writes m as .npz (with `body` and `floats`, engine/motion/npz.h) when `path` ends in .npz, else
-// as BVH, which has no body (both atomically).
+// The motion formats motion_write writes, by extension: {".bvh", ".npz"}.
+extern const std::vector<std::string> kMotionWriteExtensions;
+
+// Writes m as .npz (with `body` and `floats`, engine/motion/npz.h) when `path` ends in .npz, as
+// BVH, which has no body, when it ends in .bvh (both atomically; ASCII case-insensitive). Any
+// other extension is a gmg::Error naming the path, so BVH text never lands in "out.txt" or
+// "x.fbx" (check_output_file with kMotionWriteExtensions refuses it before any work).
 void motion_write(const std::string& path, const Motion& m, const SmplxBody& body = {},
                   NpzFloats floats = NpzFloats::Beat2);
 

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <random>
 
 #include "audio/audio_file.h"
 #include "audio/onset.h"
+#include "audio/speech_check.h"
 #include "engine/assemble/blend.h"
 #include "engine/assemble/channels.h"
 #include "engine/assemble/resample.h"
@@ -66,6 +68,7 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
   if (ev.total_frames < 1) throw Error(times.name + ": audio is shorter than one motion frame");
   ev.onset_frames = audio::onset_motion_frames(times.onsets, fps, ev.total_frames);
   ev.features = audio::speech_features(times.energy, times.onsets.envelope, fps, ev.total_frames);
+  ev.warnings = times.warnings;
   if (times.has_words) {
     ev.words = static_cast<int>(times.words.size());
     for (const text::KeywordFrame& k :
@@ -114,16 +117,30 @@ void check_words(std::vector<text::Word>& words, const std::string& name) {
 }
 
 SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
-  audio::Audio sound = audio::read_audio(files.audio);
+  std::vector<std::string> warnings;
+  audio::Audio sound = audio::read_audio(files.audio, &warnings);
   const double duration_s = sound.duration();
+  audio::EnergyTrack energy = audio::energy_track(sound);
+  // Before the long onset analysis: silence or a click of audio fails at once.
+  if (!files.allow_silence) {
+    const std::string problem = audio::speech_level_problem(duration_s, energy);
+    if (!problem.empty()) throw Error(audio::speech_refusal(files.audio, problem, warnings));
+  }
   std::vector<text::Word> words;
   if (!files.transcript.empty()) words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
   const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
   // Checked before the long onset analysis: a transcript of another recording fails at once.
   if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
-  audio::EnergyTrack energy = audio::energy_track(sound);
   audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
-  return times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
+  if (!files.allow_silence) {
+    const std::string problem =
+        audio::speech_onset_problem(duration_s, onsets.onset_frames.size(), params.min_onset_strength);
+    if (!problem.empty()) throw Error(audio::speech_refusal(files.audio, problem, warnings));
+  }
+  SpeechTimes t =
+      times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
+  t.warnings = std::move(warnings);
+  return t;
 }
 
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
@@ -133,16 +150,33 @@ SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_coun
 
 namespace {
 
+// "62.0 s": durations as a user compares them.
+std::string seconds_text(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", s);
+  return text;
+}
+
 // A reference clip's motion and analysed speech as the graph takes them: the motion cleaned up
-// (config.cleanup), the events on its frame grid.
+// (config.cleanup), the events on its frame grid; out_warnings gets the speech's warnings and one
+// when the speech (`speech_name`) and the motion (`name`) last more than
+// kMaxReferenceDurationMismatchS apart.
 ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& config, const text::Lexicon& lexicon,
-                       const std::string& name) {
+                       const std::string& name, const std::string& speech_name,
+                       std::vector<std::string>& out_warnings) {
   ClipEvents in;
   in.name = name;
   in.motion = std::move(motion);
   motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                          config.cleanup.smooth_order, name);
   const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);
+  out_warnings = ev.warnings;
+  const double motion_s = in.motion.frame_count / in.motion.fps;
+  if (std::abs(motion_s - times.duration_s) > kMaxReferenceDurationMismatchS)
+    out_warnings.push_back(speech_name + ": lasts " + seconds_text(times.duration_s) + " but its motion " + name +
+                           " lasts " + seconds_text(motion_s) + " (" +
+                           seconds_text(std::abs(motion_s - times.duration_s)) +
+                           " apart): both are read from their starts, so check they are one recording");
   in.onset_frames = ev.onset_frames;
   in.keyword_frames = ev.keyword_frames;
   in.speech = ev.features.values;
@@ -151,13 +185,14 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
 }
 
 ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon,
-                          SmplxBody& out_body) {
+                          SmplxBody& out_body, std::vector<std::string>& out_warnings) {
   // The speech first: its audio (the larger of the two for long clips) is released before the
   // motion is read. A motion that cannot be opened is still reported before the long analysis.
   check_readable_file(c.motion);
   if (!c.skeleton.empty()) check_readable_file(c.skeleton);
   const SpeechTimes times = speech_times(c.speech, config.graph);
-  return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion);
+  return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
+                     out_warnings);
 }
 
 // The graph's body from its clips': the face when every clip has one of the same size (a face
@@ -189,19 +224,21 @@ SmplxBody join_bodies(std::vector<SmplxBody>& bodies) {
 }  // namespace
 
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
-                                   const BuildProgress& progress, int jobs) {
+                                   const BuildProgress& progress, int jobs, std::vector<std::string>* out_warnings) {
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs(clips.size());
   std::vector<SmplxBody> bodies(clips.size());
+  std::vector<std::vector<std::string>> warnings(clips.size());
   std::mutex m;
   long done = 0;
   // Clips are independent: read them on several threads, each into its own slot.
   parallel_for(clips.size(), worker_count(jobs, clips.size()), [&](std::size_t i, int) {
     std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
     try {
-      inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip",
-                                       [&] { return read_reference(clips[i], config, lexicon, bodies[i]); });
+      inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip", [&] {
+        return read_reference(clips[i], config, lexicon, bodies[i], warnings[i]);
+      });
     } catch (...) {
       error = std::current_exception();
     }
@@ -211,6 +248,8 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
     }
     if (error) std::rethrow_exception(error);
   });
+  if (out_warnings)
+    for (const std::vector<std::string>& w : warnings) out_warnings->insert(out_warnings->end(), w.begin(), w.end());
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
   MotionGraph g = naming_memory_errors(what, "building the graph",
                                        [&] { return graph_build(std::move(inputs), config.graph, progress); });
@@ -233,7 +272,8 @@ MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Confi
       throw Error(c.name + ": the face does not have the motion's " + std::to_string(c.motion.frame_count) + " frames");
     inputs.push_back(naming_memory_errors(c.name, "reading the reference clip", [&] {
       const SpeechTimes times = speech_times_of(c.sound, c.has_words ? &c.words : nullptr, c.name, config.graph);
-      return clip_events(std::move(c.motion), times, config, lexicon, c.name);
+      std::vector<std::string> warnings;  // the arrays' caller has them in hand: none is news
+      return clip_events(std::move(c.motion), times, config, lexicon, c.name, c.name, warnings);
     }));
     bodies.push_back(std::move(c.body));
   }
@@ -342,7 +382,22 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
       reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());
   if (nlohmann::ordered_json body = body_report(g.motion.skeleton, r.body); !body.is_null())
     r.report["body"] = std::move(body);
+  r.warnings = events.warnings;
   return r;
+}
+
+std::string check_lock_joints_of_graph(const MotionGraph& g, const Config& config, const std::string& graph_name) {
+  const std::vector<std::string>& joints = config.cleanup.lock_joints;
+  if (joints.empty()) return "";
+  std::vector<std::string> names;
+  for (const Joint& j : g.motion.skeleton.joints) names.push_back(j.name);
+  const auto missing = std::find_if(joints.begin(), joints.end(), [&](const std::string& j) {
+    return std::find(names.begin(), names.end(), j) == names.end();
+  });
+  if (missing != joints.end())
+    throw Error(graph_name + ": lock_joints names '" + *missing + "', which is not a joint of its skeleton" +
+                did_you_mean(*missing, names));
+  return graph_name + ": lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')";
 }
 
 namespace {
@@ -360,6 +415,7 @@ void prepend_inputs(Reenactment& r, nlohmann::ordered_json inputs) {
 
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
                     const std::string& graph_name) {
+  check_lock_joints_of_graph(g, config, graph_name);
   const text::Lexicon lexicon = lexicon_for(config.graph);
   const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
   check_output_size(events.total_frames, g.motion.skeleton, speech.audio);
@@ -373,6 +429,7 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
 
 Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
                           const Config& config, const std::string& name, const std::string& graph_name) {
+  check_lock_joints_of_graph(g, config, graph_name);
   check_audio_samples(sound, name);
   std::vector<text::Word> sorted;
   if (words) {

@@ -27,7 +27,15 @@ struct SpeechFiles {
   std::string transcript;  // "" = none
   text::TranscriptFormat transcript_format = text::TranscriptFormat::Auto;
   std::string tier{};  // the TextGrid tier to read; "" = the default (text/transcript.h read_textgrid)
+  // Take audio that cannot be speech as it is: shorter than 0.5 s, silent, or without any onset
+  // in more than 10 s (audio/speech_check.h). false: such audio is an error naming the file.
+  bool allow_silence = false;
 };
+
+// A reference whose audio and motion durations differ by more than this many seconds gets a
+// warning naming both files: they are put on one clock from their starts, so a large difference
+// means a cut recording or files of two recordings.
+inline constexpr double kMaxReferenceDurationMismatchS = 1.0;
 
 // Speech as frames on a motion grid.
 struct SpeechEvents {
@@ -37,12 +45,14 @@ struct SpeechEvents {
   std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
   int words = 0;                                            // transcript words read
   audio::SpeechFeatures features;                           // total_frames frames
+  std::vector<std::string> warnings;  // what did not stop the analysis (decoder damage), naming the file
 };
 
 // Detects onsets (SPEC "Onset nodes") and keywords in a speech. frame_count < 0 means a test
 // speech (T = round(duration * fps)); otherwise events at or after frame_count are dropped (a
 // reference whose audio outlasts its motion). A transcript that runs past the audio's end is an
-// error naming the transcript.
+// error naming the transcript; audio that cannot be speech (audio/speech_check.h) is an error
+// naming the audio unless files.allow_silence.
 SpeechEvents speech_analyse(const SpeechFiles& files, double fps, int frame_count, const GraphParams& params,
                             const text::Lexicon& lexicon);
 
@@ -54,10 +64,12 @@ struct SpeechTimes {
   audio::EnergyTrack energy;
   std::vector<text::Word> words;
   bool has_words = false;
-  std::string name;  // labels errors: the transcript's file name, else the audio's
+  std::string name;                   // labels errors: the transcript's file name, else the audio's
+  std::vector<std::string> warnings;  // what did not stop the reading (decoder damage), naming the file
 };
 
-// Reads and analyses a speech (the transcript past the audio's end is an error here already).
+// Reads and analyses a speech (the transcript past the audio's end and audio that cannot be
+// speech are errors here already).
 SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params);
 
 // The events of analysed speech on a grid of `fps` (frame_count as for speech_analyse).
@@ -92,8 +104,12 @@ struct ReferenceFiles {
 
 // Reads, analyses and joins the clips into one graph, in the order given. Clips are read by up
 // to `jobs` threads (0: every core); a problem names the first clip (in order) that has one.
+// Warnings (each naming its files: decoder damage, a clip whose audio and motion durations
+// differ by more than kMaxReferenceDurationMismatchS) are added to *out_warnings in clip order,
+// when it is given.
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
-                                   const BuildProgress& progress = {}, int jobs = 1);
+                                   const BuildProgress& progress = {}, int jobs = 1,
+                                   std::vector<std::string>* out_warnings = nullptr);
 
 // A reference clip in memory (the Python module's arrays): analysed exactly as a clip of files.
 struct ReferenceClip {
@@ -117,7 +133,14 @@ struct Reenactment {
   SmplxBody body;
   Plan plan;
   nlohmann::ordered_json report;
+  std::vector<std::string> warnings;  // what did not stop it, each naming its file (for standard error)
 };
+
+// Throws gmg::Error naming `graph_name` when config.cleanup.lock_joints names a joint g's
+// skeleton lacks (with the nearest joint name). A built graph's motion was cleaned when it was
+// built, so for joints it has, the warning returned says the key has no effect here; "" when
+// lock_joints is empty.
+std::string check_lock_joints_of_graph(const MotionGraph& g, const Config& config, const std::string& graph_name);
 
 // Throws gmg::Error naming `name` (the speech) when a motion of `frames` frames in `skeleton`
 // would exceed what gmg writes (engine/core/limits.h: kMaxOutputFrames frames, kMaxOutputBytes
@@ -125,7 +148,8 @@ struct Reenactment {
 void check_output_size(int frames, const Skeleton& skeleton, const std::string& name);
 
 // Reenacts the speech: segmentation, planning, resampling, blending. Deterministic for a given
-// graph, speech, config (including config.seed). `graph_name` only labels the report.
+// graph, speech, config (including config.seed). `graph_name` labels the report and the errors
+// of check_lock_joints_of_graph, which runs first.
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
                     const std::string& graph_name);
 

@@ -1,6 +1,7 @@
 // The Python module `gmg`: the engine over NumPy arrays and files (see the README's "From
-// Python"). gmg::Error becomes gmg.Error with the same message.
+// Python"). gmg::Error becomes gmg.Error with the same message, gmg::Interrupted KeyboardInterrupt.
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 #include "engine/python/python_types.h"
 
 #ifndef GMG_VERSION
@@ -19,6 +20,8 @@ PYBIND11_MODULE(gmg, m) {
   py::register_exception_translator([](std::exception_ptr p) {  // NOLINT(performance-unnecessary-value-param)
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const gmg::Interrupted& e) {  // a job stopped by a signal (engine/core/interrupt.h)
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const gmg::Error& e) {
       const std::string what = e.what();
       PyObject* text = PyUnicode_DecodeUTF8(what.data(), static_cast<Py_ssize_t>(what.size()), "replace");

@@ -261,7 +261,7 @@ py::object evaluate(const py::object& generated, const py::object& truth, const 
       if (is_path(o)) {
         out_name = path_of(o);
         const py::gil_scoped_release release;
-        return audio::read_audio(out_name);
+        return read_evaluated_speech(out_name, false, l.warnings);  // as gmg evaluate reads it
       }
       out_name = label;
       return audio_of(o, sample_rate, label);

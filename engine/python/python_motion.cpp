@@ -206,24 +206,37 @@ Config config_of(const py::object& config, const py::object& set, const py::obje
   if (!config.is_none()) {
     if (is_path(config)) {
       config_load_file(c, path_of(config));
+      try {
+        config_validate(c);  // before the assignments, as the command line's --config
+      } catch (const Error& e) {
+        throw Error(path_of(config) + ": " + e.what());
+      }
     } else {
       config_load_text(c, json_dump(from_python(config, "config")), "config");
     }
   }
   if (!set.is_none()) {
-    if (py::isinstance<py::dict>(set)) {
-      for (const auto& [key, value] : set.cast<py::dict>()) {
-        std::string text;
-        if (py::isinstance<py::bool_>(value))
-          text = value.cast<bool>() ? "true" : "false";
-        else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))
-          for (const py::handle& item : value) text += (text.empty() ? "" : ",") + py::str(item).cast<std::string>();
-        else
-          text = py::str(value).cast<std::string>();
-        config_set(c, py::str(key).cast<std::string>(), text);
+    // As the command line's --set: a bad key or value, or a rule the assignments break, is
+    // "--set: ..." (cli_common.cpp ConfigOptions::make).
+    try {
+      if (py::isinstance<py::dict>(set)) {
+        for (const auto& [key, value] : set.cast<py::dict>()) {
+          std::string text;
+          if (py::isinstance<py::bool_>(value))
+            text = value.cast<bool>() ? "true" : "false";
+          else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))
+            for (const py::handle& item : value) text += (text.empty() ? "" : ",") + py::str(item).cast<std::string>();
+          else
+            text = py::str(value).cast<std::string>();
+          config_set(c, py::str(key).cast<std::string>(), text);
+        }
+      } else {
+        for (const py::handle& item : set) config_set_assignment(c, item.cast<std::string>());
       }
-    } else {
-      for (const py::handle& item : set) config_set_assignment(c, item.cast<std::string>());
+      config_validate(c);
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      throw Error(what.rfind("--set", 0) == 0 ? what : "--set: " + what);
     }
   }
   if (!seed.is_none()) c.seed = seed.cast<std::uint64_t>();

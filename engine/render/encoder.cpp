@@ -1,7 +1,7 @@
 #include "engine/render/encoder.h"
 
 #include <fcntl.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -62,9 +62,22 @@ std::vector<std::string> ffmpeg_arguments(const EncoderSettings& s) {
   // 48 kHz: an AAC frame (1024 samples) is then shorter than a video frame, so the audio's padded
   // end stays within a frame of the WAV's length.
   if (!s.audio.empty()) a.insert(a.end(), {"-c:a", "aac", "-b:a", "160k", "-ar", "48000"});
-  if (ends_with_ci(s.output, ".mp4") || ends_with_ci(s.output, ".mov")) a.insert(a.end(), {"-movflags", "+faststart"});
+  // The container comes from the user's name: the temporary's own name ends in ".tmp<pid>_<n>".
+  const std::string& name = s.name.empty() ? s.output : s.name;
+  if (ends_with_ci(name, ".mp4") || ends_with_ci(name, ".mov")) a.insert(a.end(), {"-movflags", "+faststart"});
+  a.insert(a.end(), {"-f", ends_with_ci(name, ".mkv") ? "matroska" : ends_with_ci(name, ".mov") ? "mov" : "mp4"});
   a.push_back(s.output);
   return a;
+}
+
+// The cause of a failed encode when ffmpeg's messages name one the user can act on: the disk or
+// the folder, not the codec. "" when none does.
+std::string write_failure(const std::string& log) {
+  for (const int err : {ENOSPC, EDQUOT, EROFS, EACCES, EIO, EFBIG}) {
+    std::string text = std::strerror(err);
+    if (log.find(text) != std::string::npos) return text;
+  }
+  return "";
 }
 
 bool write_all(int fd, const unsigned char* p, std::size_t n) {
@@ -111,25 +124,37 @@ VideoEncoder::VideoEncoder(const EncoderSettings& settings) : settings_(settings
     ::close(log_fd);
     throw Error(settings_.name + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
   }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, log_fd, 2);
   const std::vector<std::string> args = ffmpeg_arguments(settings_);
   std::vector<char*> argv;
   argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
-  const int rc = posix_spawn(&pid_, settings_.ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  const int null_fd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  // Registered before ffmpeg creates it, so a second Ctrl-C (which ends gmg at once) removes it.
+  temp_slot_ = register_temporary_file(settings_.output);
+  const pid_t parent = ::getpid();
+  // fork and exec rather than posix_spawn: the child asks the kernel to kill it when gmg dies
+  // (PR_SET_PDEATHSIG), so no ffmpeg outlives a gmg that was killed, even by SIGKILL. Between
+  // the two only async-signal-safe calls.
+  pid_ = ::fork();
+  if (pid_ == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);  // gmg died before the request took hold
+    ::dup2(fds[0], 0);
+    ::dup2(null_fd, 1);
+    ::dup2(log_fd, 2);
+    ::execve(argv[0], argv.data(), environ);
+    ::_exit(127);
+  }
+  const int fork_error = errno;
   ::close(fds[0]);
   ::close(log_fd);
+  if (null_fd >= 0) ::close(null_fd);
   pipe_fd_ = fds[1];
-  if (rc != 0) {
+  if (pid_ < 0) {
     pid_ = -1;
     stop();
-    throw Error(settings_.ffmpeg + ": cannot run (" + std::strerror(rc) + ")");
+    throw Error(settings_.ffmpeg + ": cannot run (" + std::strerror(fork_error) + ")");
   }
 }
 
@@ -147,6 +172,8 @@ void VideoEncoder::stop() {
     std::error_code ec;
     std::filesystem::remove(settings_.output, ec);
   }
+  unregister_temporary_file(temp_slot_);
+  temp_slot_ = -1;
   if (!log_path_.empty()) {
     std::error_code ec;
     std::filesystem::remove(log_path_, ec);
@@ -169,7 +196,15 @@ std::string VideoEncoder::log_tail() const {
 }
 
 void VideoEncoder::fail(const std::string& what) {
-  const std::string message = settings_.name + ": " + what + " (ffmpeg: " + log_tail() + ")";
+  std::string log = log_tail();
+  // ffmpeg names the temporary it writes; the user knows the output's name.
+  for (std::size_t at = log.find(settings_.output); !settings_.name.empty() && at != std::string::npos;
+       at = log.find(settings_.output, at + settings_.name.size()))
+    log.replace(at, settings_.output.size(), settings_.name);
+  const std::string cause = write_failure(log);
+  const std::string message = settings_.name + ": " +
+                              (cause.empty() ? what : "cannot write the video (" + cause + ")") +
+                              " (ffmpeg: " + escape_nonprintable(log) + ")";
   stop();
   throw Error(message);
 }
@@ -199,7 +234,14 @@ void VideoEncoder::finish() {
   while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
   }
   pid_ = -1;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  // ffmpeg may end with 0 after failed writes (a full disk while it writes the trailer), so its
+  // messages decide too: a video it could not write whole is no video.
+  std::string log;
+  try {
+    log = read_file_bytes(log_path_);
+  } catch (const Error&) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !write_failure(log).empty()) {
     std::error_code ec;
     std::filesystem::remove(settings_.output, ec);
     fail("ffmpeg could not encode the video");

@@ -37,7 +37,10 @@ struct EncoderSettings {
 
 // Runs ffmpeg for the life of the object. Every frame becomes exactly one video frame at the
 // given rate (no frame is dropped or duplicated, and the audio, which keeps its own length, does
-// not cut the video). On destruction without finish() ffmpeg is stopped and `output` removed.
+// not cut the video). On destruction without finish() ffmpeg is stopped and `output` removed;
+// ffmpeg is killed by the kernel should this process die (PR_SET_PDEATHSIG), and `output` is
+// registered for removal on a signal. The container follows `name`'s extension (.mkv Matroska,
+// .mov QuickTime, else MP4), so `output` may have any name.
 class VideoEncoder {
  public:
   explicit VideoEncoder(const EncoderSettings& settings);
@@ -60,6 +63,7 @@ class VideoEncoder {
   EncoderSettings settings_;
   pid_t pid_ = -1;
   int pipe_fd_ = -1;
+  int temp_slot_ = -1;  // settings_.output in the interrupt registry (engine/core/files.h)
   std::string log_path_;
 };
 

@@ -18,20 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void check_folder(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty() && !fs::is_directory(parent, ec))
-    throw Error(path + ": the folder " + parent.string() + " does not exist");
-}
-
-void check_output(const std::string& path) {
-  if (!ends_with_ci(path, ".mp4") && !ends_with_ci(path, ".mkv") && !ends_with_ci(path, ".mov"))
-    throw Error(path + ": the video must be a .mp4, .mkv or .mov file" +
-                (ends_with_ci(path, ".png") ? std::string(" (a .png is one frame: --still SECONDS)") : ""));
-  check_folder(path);
-}
-
 // Frames [first, end) of the scene that options' range holds.
 struct FrameRange {
   int first = 0, end = 0;
@@ -52,11 +38,9 @@ FrameRange frame_range(const Scene& scene, const RenderOptions& o, const std::st
   return r;
 }
 
-// Throws once Ctrl-C or a TERM came (engine/core/interrupt.h): the job ends through the error
-// path, so the temporary video is removed rather than left behind.
-void check_interrupt(const std::string& output) {
-  if (InterruptFlag::raised()) throw Error(output + ": interrupted; no video written");
-}
+// Throws Interrupted once Ctrl-C, a TERM or a HUP came (engine/core/interrupt.h): the job ends
+// through the error path, so ffmpeg is stopped and the temporary video removed.
+void check_interrupt(const std::string& output) { throw_if_interrupted(output, "no video written"); }
 
 // A signal after a successful finish() changes nothing: the video is complete.
 void encode(const Scene& scene, const FrameRange& range, const EncoderSettings& settings) {
@@ -77,18 +61,19 @@ void encode(const Scene& scene, const FrameRange& range, const EncoderSettings& 
   }
 }
 
-// Beside the output, so the final rename stays on one file system; same extension, so ffmpeg
-// picks the same container.
-std::string temporary_twin(const std::string& path) {
-  const fs::path p(path);
-  const fs::path name = p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string();
-  return (p.parent_path() / name).string();
-}
-
 }  // namespace
 
+const std::vector<std::string> kVideoExtensions = {".mp4", ".mkv", ".mov"};
+
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options) {
-  check_output(in.output);
+  try {
+    check_output_file({"", in.output}, kVideoExtensions);
+  } catch (const Error& e) {
+    if (!ends_with_ci(in.output, ".png")) throw;
+    throw Error(std::string(e.what()) + " (a .png is one frame: --still SECONDS)");
+  }
+  // The partial videos of renders that were killed (SIGKILL cannot be caught) go now.
+  remove_stale_temporaries(fs::path(in.output).parent_path().string(), kVideoExtensions);
   const InterruptFlag interrupt;
   const std::string ffmpeg = find_executable(options.ffmpeg);
   if (ffmpeg.empty())
@@ -99,7 +84,9 @@ RenderSummary render_video(const RenderInputs& in, const RenderOptions& options)
 
   EncoderSettings e;
   e.ffmpeg = ffmpeg;
-  e.output = temporary_twin(in.output);
+  // Beside the output, so the final rename stays on one file system, and named as every
+  // temporary of gmg is, so a later render removes it should this one be killed.
+  e.output = temporary_name_for(in.output);
   e.name = in.output;
   e.audio = in.audio;
   if (range.first > 0 || range.end < scene.frame_count) {
@@ -127,7 +114,7 @@ RenderSummary render_video(const RenderInputs& in, const RenderOptions& options)
 
 RenderSummary render_still(const RenderInputs& in, const RenderOptions& options, double at_s) {
   if (!ends_with_ci(in.output, ".png")) throw Error(in.output + ": a still frame is written as a .png file");
-  check_folder(in.output);
+  check_output_file({"", in.output}, {".png"});  // the folder exists and can be written
   const Scene scene = scene_load(in, options);
   const int frame = static_cast<int>(std::lround(at_s * scene.fps));
   if (!(at_s >= 0) || frame >= scene.frame_count)

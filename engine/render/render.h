@@ -23,10 +23,16 @@ struct RenderSummary {
   std::vector<std::string> notes;
 };
 
+// The containers render_video writes, by extension: {".mp4", ".mkv", ".mov"}.
+extern const std::vector<std::string> kVideoExtensions;
+
 // gmg::Error "path: what" for a missing or invalid input, an output that is not .mp4, .mkv or
-// .mov or whose folder does not exist, a range (options.from_s, to_s) that holds no frame of the
-// motion, no ffmpeg (options.ffmpeg not found), or ffmpeg failing. With a range the video has
-// exactly the range's frames and the audio is cut to it.
+// .mov or cannot be written (check_output_file), a range (options.from_s, to_s) that holds no frame
+// of the motion, no ffmpeg (options.ffmpeg not found), or ffmpeg failing; Interrupted on SIGINT,
+// SIGTERM or SIGHUP (ffmpeg stopped, nothing written). With a range the video has exactly the
+// range's frames and the audio is cut to it. First it removes the temporary videos that renders
+// killed by SIGKILL left in the output's folder (remove_stale_temporaries), and ffmpeg dies with
+// this process, whatever kills it.
 RenderSummary render_video(const RenderInputs& in, const RenderOptions& options);
 
 // One frame, the one shown at `at_s` seconds (round(at_s fps)), as a PNG of the video's size

@@ -39,7 +39,7 @@ std::vector<double> speech_onsets(const audio::Audio& sound, const ReportFacts& 
 void read_speech(const RenderInputs& in, Scene& s) {
   audio::Audio sound;
   if (!in.audio.empty()) {
-    sound = audio::read_audio(in.audio);
+    sound = audio::read_audio(in.audio, &s.notes);
     s.audio_s = sound.duration();
     if (std::abs(s.audio_s - s.frame_count / s.fps) > 1.0)
       s.notes.push_back(in.audio + " lasts " + format_seconds(s.audio_s) + " and " + in.motion + " " +
@@ -57,12 +57,6 @@ void read_speech(const RenderInputs& in, Scene& s) {
     else
       s.notes.push_back("no --audio: only junctions are marked, not onsets");
   }
-}
-
-void check_size(const RenderOptions& o) {
-  if (o.width < 160 || o.height < 120 || o.width > 3840 || o.height > 2160 || o.width % 2 || o.height % 2)
-    throw Error("--size: " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                " is not an even size from 160x120 to 3840x2160");
 }
 
 // Lays out the panels (left to right) and the bands for the strip and the captions, and places
@@ -224,6 +218,12 @@ void Canvas::write_png(const std::string& path) const {
 const unsigned char* Canvas::pixels() const {
   cairo_surface_flush(surface_);
   return cairo_image_surface_get_data(surface_);
+}
+
+void check_size(const RenderOptions& o) {
+  if (o.width < 160 || o.height < 120 || o.width > 3840 || o.height > 2160 || o.width % 2 || o.height % 2)
+    throw Error("--size: " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                " is not an even size from 160x120 to 3840x2160");
 }
 
 }  // namespace gmg::render

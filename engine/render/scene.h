@@ -74,6 +74,10 @@ struct Scene {
   std::vector<std::string> notes;               // warnings for the user (lengths that differ, ...)
 };
 
+// Throws gmg::Error "--size: WxH is not an even size from 160x120 to 3840x2160" for a size out of
+// range (scene_load checks it too; the command line checks it first, as a usage error).
+void check_size(const RenderOptions& o);
+
 // Reads the inputs and prepares the picture. gmg::Error naming the file for any unreadable or
 // invalid input, an empty motion, or a size out of range.
 Scene scene_load(const RenderInputs& in, const RenderOptions& options);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "audio/onset.h"
 #include "audio/wav.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
@@ -66,10 +68,90 @@ TEST(AudioFile, UnreadableAndUndecodableFilesNameTheFile) {
             dir.file("gone.flac") + ": cannot open (No such file or directory)");
   EXPECT_EQ(error_of([&] { gmg::audio::read_audio(dir.path().string()); }),
             dir.path().string() + ": is a folder, not a file");
-  gmg::testing::write_text(dir.file("words.flac"), "0\t1\thello\n");
-  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("words.flac")); });
-  EXPECT_EQ(msg.rfind(dir.file("words.flac") + ": cannot decode as audio", 0), 0u) << msg;
+  // Binary that is no known format: the decoder's reason, on one line.
+  gmg::testing::write_text(dir.file("noise.flac"), std::string("\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0e", 10));
+  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("noise.flac")); });
+  EXPECT_EQ(msg.rfind(dir.file("noise.flac") + ": cannot decode as audio", 0), 0u) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("RIFF"), std::string::npos) << "a WAV reader's complaint about a file that is no WAV: " << msg;
+  std::string bytes(4096, '\0');  // binary without any format's signature
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(((i * 2654435761u >> 13) & 0x7F) | 0x01);
+  gmg::testing::write_text(dir.file("noise.bin"), bytes);
+  const std::string bin = error_of([&] { gmg::audio::read_audio(dir.file("noise.bin")); });
+  EXPECT_EQ(bin.rfind(dir.file("noise.bin") + ": cannot decode as audio", 0), 0u) << bin;
+  EXPECT_EQ(bin.find("RIFF"), std::string::npos) << bin;
+}
+
+// What a file holds decides how it is read, and a file that is not audio says what it is instead
+// of how a WAV or the decoder fails on it.
+TEST(AudioFile, FilesThatAreNotAudioSayWhatTheyAre) {
+  TempDir dir;
+  const auto refused = [&](const std::string& name, const std::string& bytes) {
+    gmg::testing::write_text(dir.file(name), bytes);
+    return error_of([&] { gmg::audio::read_audio(dir.file(name)); });
+  };
+  const std::string hint = " (give the speech as WAV, FLAC, MP3, OGG, M4A, ...)";
+  EXPECT_EQ(refused("words.wav", "0\t1\thello\n"), dir.file("words.wav") + ": is not audio: it is a text file" + hint);
+  EXPECT_EQ(refused("words.flac", "0\t1\thello\n"),
+            dir.file("words.flac") + ": is not audio: it is a text file" + hint);
+  EXPECT_EQ(refused("take.wav", "HIERARCHY\nROOT hips\n"),
+            dir.file("take.wav") + ": is not audio: it is a BVH motion file" + hint);
+  EXPECT_EQ(refused("ref.mp3", std::string("GMGRAPH\0\x03\0\0\0", 12)),
+            dir.file("ref.mp3") + ": is not audio: it is a gmg graph file" + hint);
+  EXPECT_EQ(refused("t.wav", "{\"segments\": []}"), dir.file("t.wav") + ": is not audio: it is JSON text" + hint);
+  EXPECT_EQ(refused("empty.mp3", ""), dir.file("empty.mp3") + ": is empty (0 bytes), not audio");
+  // Bytes that say nothing, named .wav: the WAV reader's own byte-precise error.
+  const std::string raw = refused("raw.wav", std::string("\x01\x00\x02\x00\x03\x00\x04\x00\x05\x00\x06\x00", 12));
+  EXPECT_EQ(raw.rfind(dir.file("raw.wav") + ": byte 0: ", 0), 0u) << raw;
+}
+
+TEST(AudioFile, SniffingNamesTheFormats) {
+  using gmg::audio::sniff_content;
+  EXPECT_EQ(sniff_content(std::string("RIFF\x24\0\0\0WAVEfmt ", 16)).name, "a WAV file");
+  EXPECT_TRUE(sniff_content(std::string("fLaC\0\0\0\x22", 8)).audio);
+  EXPECT_EQ(sniff_content("ID3\x04").name, "an MP3 file");
+  EXPECT_EQ(sniff_content("\xFF\xFB\x90\x64").name, "an MP3 file");
+  EXPECT_EQ(sniff_content("\xFF\xF1\x50\x80").name, "an AAC (ADTS) file");
+  EXPECT_EQ(sniff_content(std::string("\0\0\0\x20"
+                                      "ftypM4A ",
+                                      12))
+                .name,
+            "an MP4/M4A file");
+  EXPECT_EQ(sniff_content(std::string("OggS\0\x02", 6)).name, "an Ogg file");
+  EXPECT_EQ(sniff_content("\xEF\xBB\xBFHIERARCHY\r\n").name, "a BVH motion file");
+  EXPECT_EQ(sniff_content("PK\x03\x04").name, "a ZIP archive (an .npz?)");
+  EXPECT_EQ(sniff_content("File type = \"ooTextFile\"").name, "a Praat TextGrid");
+  EXPECT_EQ(sniff_content("\x01\x02\x03\x04").name, "");
+  EXPECT_FALSE(sniff_content("hello").audio);
+}
+
+// An M4A cut in half has lost its index (written last): the decoder's reason leads, not the
+// complaint of the WAV reader aubio tries after it ("could not find RIFF header").
+TEST(AudioFile, ACutM4aSaysWhyItCannotBeDecoded) {
+  if (!have_ffmpeg()) GTEST_SKIP() << "the ffmpeg tool is absent";
+  TempDir dir;
+  gmg::audio::write_wav_pcm16(dir.file("t.wav"), tone(16000));
+  ffmpeg(dir.file("t.wav"), dir.file("t.m4a"), "-c:a aac");
+  const std::string whole = gmg::read_file_bytes(dir.file("t.m4a"));
+  gmg::testing::write_text(dir.file("cut.m4a"), whole.substr(0, whole.size() / 2));
+  const std::string msg = error_of([&] { gmg::audio::read_audio(dir.file("cut.m4a")); });
+  EXPECT_EQ(msg, dir.file("cut.m4a") +
+                     ": cannot decode an MP4/M4A file (the decoder: moov atom not found); the file may be cut short or "
+                     "damaged");
+  EXPECT_EQ(msg.find("RIFF"), std::string::npos) << msg;
+}
+
+TEST(AudioFile, AnMp3NamedWavIsDecodedWithAWarning) {
+  if (!have_ffmpeg()) GTEST_SKIP() << "the ffmpeg tool is absent";
+  TempDir dir;
+  gmg::audio::write_wav_pcm16(dir.file("t.wav"), tone(44100));
+  ffmpeg(dir.file("t.wav"), dir.file("t.mp3"), "-b:a 128k");
+  std::filesystem::rename(dir.file("t.mp3"), dir.file("really_mp3.wav"));
+  std::vector<std::string> warnings;
+  const Audio a = gmg::audio::read_audio(dir.file("really_mp3.wav"), &warnings);
+  EXPECT_NEAR(a.duration(), 2.0, 0.1);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], dir.file("really_mp3.wav") + ": is an MP3 file, not a WAV; decoded as such");
 }
 
 TEST(AudioFile, FlacStereoAndMonoGiveTheWavsSamplesExactly) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/slurm_batch.sh on a real Slurm: submits a batch of 5 test speeches against 2
 # references as 3 parts plus the merge, waits for them, and checks that the parts' outputs are
-# byte-identical to one local run's and that the merged summary covers every clip.
+# byte-identical to one local run's, that the merged folder holds them all, and that the merged
+# summary covers every clip.
 # Skips (exit 77) with a message when Slurm is not installed or no controller answers
 # (scripts/setup_local_slurm.sh sets up a one-node cluster on this machine).
 # Usage: slurm_batch_test.sh GMG_BINARY SOURCE_DIR
@@ -46,6 +47,14 @@ for f in "$work"/single/*.bvh "$work"/single/t*.json; do
     status=1
   elif ! cmp -s "$f" "${found[0]}"; then
     echo "FAIL: $name differs from the single run's"
+    status=1
+  fi
+done
+# The merge puts every part's outputs into the one folder, ready for what comes next.
+for f in "$work"/single/*.bvh; do
+  name=$(basename "$f")
+  if ! cmp -s "$f" "$work/cluster/$name"; then
+    echo "FAIL: the merged folder's $name is missing or differs from the single run's"
     status=1
   fi
 done

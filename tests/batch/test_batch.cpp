@@ -455,6 +455,27 @@ TEST_F(BatchData, CommandLineExitCodes) {
       run_cli({"batch", "--pool", pool(), "--tests", tests_flat(), "-o", out3.path().string(), "--set", "nokey=1"}), 2);
 }
 
+// What the pipeline warns about reaches batch's progress lines: here a pool clip whose audio (6.5 s)
+// is not its motion's (20 s).
+TEST_F(BatchData, WarningsOfTheReferencesAndClipsAreProgressLines) {
+  TempDir work;
+  const std::string manifest = work.file("pool.csv");
+  write_text(manifest,
+             "stem,bvh,wav,transcript\nmixed," + pool() + "/bvh/ref_a.bvh," + tests_flat() + "/tst_01.wav,\n");
+  BatchOptions o = options(work.file("out"));
+  o.pool_dirs.clear();
+  o.pool_manifests = {manifest};
+  o.test_dirs.clear();
+  o.test_manifests = {work.file("tests.csv")};
+  write_text(work.file("tests.csv"), "stem,wav,transcript\nt2," + tests_flat() + "/tst_02.wav,\n");
+  std::ostringstream log;
+  const BatchSummary s = batch_run(o, Config{}, log);
+  EXPECT_EQ(s.ok, 1) << log.str();
+  EXPECT_TRUE(contains(log.str(), "batch: warning: " + tests_flat() + "/tst_01.wav: lasts 6.5 s but its motion " +
+                                      pool() + "/bvh/ref_a.bvh lasts 20.0 s"))
+      << log.str();
+}
+
 TEST_F(BatchData, TerminalProgressIsOneUpdatingLine) {
   TempDir out;
   BatchOptions o = options(out.path().string());

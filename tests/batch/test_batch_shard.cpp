@@ -123,6 +123,14 @@ TEST_F(ShardData, PartsTogetherWriteExactlyWhatOneRunWrites) {
 
   const BatchSummary merged = batch_merge(parts, (work.path() / "merged").string(), log);
   EXPECT_EQ(merged.ok, 7);
+  // The merged folder holds every part's BVH and report, byte for byte one run's, each clip's
+  // output naming its copy there: one folder, ready for what comes next.
+  EXPECT_TRUE(outputs(work.path() / "merged") == single) << "the merged folder lacks the parts' outputs";
+  for (const BatchClipResult& c : merged.clips)
+    EXPECT_EQ(c.output, (work.path() / "merged" / (c.test_stem + ".bvh")).string());
+  const BatchSummary again = batch_merge(parts, (work.path() / "merged").string(), log);  // a re-run changes nothing
+  EXPECT_EQ(again.ok, 7);
+  EXPECT_TRUE(outputs(work.path() / "merged") == single);
   EXPECT_EQ(read_file_bytes((work.path() / "merged" / "pairs.csv").string()),
             read_file_bytes((work.path() / "whole" / "pairs.csv").string()));
   const auto a = nlohmann::json::parse(read_file_bytes((work.path() / "whole" / "summary.json").string()));

@@ -71,9 +71,10 @@ TEST(Cli, EngineErrorsPrintOneLineAndExitOne) {
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(r.err.rfind("gmg: error: " + missing, 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  // A --set that names no key is a usage error (2), not an input's (tests/cli/test_hostile_input.cpp).
   const CliRun bad_set = run({"config", "--set", "nope=1"});
-  EXPECT_EQ(bad_set.code, 1);
-  EXPECT_EQ(bad_set.err, "gmg: error: unknown config key 'nope' (run 'gmg config' for the list)\n");
+  EXPECT_EQ(bad_set.code, 2);
+  EXPECT_EQ(bad_set.err, "gmg: error: --set: unknown config key 'nope' (run 'gmg config --keys' for the list)\n");
 }
 
 TEST(Cli, UsageErrorsPrintOneErrorLineAndExitTwo) {
@@ -111,7 +112,7 @@ TEST(Cli, EveryHelpShowsTheDefaultsAndTheExitCodes) {
       {"evaluate", "--hist-width FLOAT=1"},
       {"batch", "--progress TEXT:{auto,lines,none}=auto"},
       {"batch", "(default: the config's seed, 20231009)"},
-      {"ablation", "--folds INT=6"},
+      {"ablation", "--folds INT:INT in [2 - 1000]=6"},
       {"synth", "--stem TEXT=synth"},
       {"config", "(default: the config's seed, 20231009)"},
       {"render", "--size TEXT=640x480"},
@@ -124,7 +125,10 @@ TEST(Cli, EveryHelpShowsTheDefaultsAndTheExitCodes) {
     EXPECT_TRUE(contains(r.out, text)) << name << ": " << text << "\n" << r.out;
     EXPECT_FALSE(contains(r.out, "=[]")) << name << ":\n" << r.out;            // an empty list is no default to show
     EXPECT_FALSE(contains(r.out, "--seed UINT=0")) << name << ":\n" << r.out;  // batch's seed is not 0 by default
-    EXPECT_TRUE(contains(r.out, "Exit codes: 0 success, 1 an input or processing error, 2 a usage error")) << r.out;
+    // Every --help states the exit codes, the interrupt contract included.
+    EXPECT_TRUE(contains(r.out, "Exit codes: 0 success; 1 an input or processing error")) << r.out;
+    EXPECT_TRUE(contains(r.out, "2 a usage error")) << r.out;
+    EXPECT_TRUE(contains(r.out, "interrupted by Ctrl-C (SIGINT) 130, by SIGTERM 143, by SIGHUP 129")) << r.out;
   }
 }
 
@@ -167,7 +171,7 @@ TEST(Cli, SynthWritesTheClipAndBatchReportsSetupErrorsWithExitTwo) {
   const CliRun b = run({"batch", "--pool", dir.path().string(), "--tests", dir.path().string(), "-o", dir.file("out"),
                         "--progress", "none"});
   EXPECT_EQ(b.code, 2);
-  EXPECT_TRUE(contains(b.err, "gmg: error: batch: the pool holds no reference clip")) << b.err;
+  EXPECT_TRUE(contains(b.err, "gmg: error: " + dir.path().string() + ": the pool holds no reference clip")) << b.err;
 }
 
 // ---- What the field's users have: SMPL-X .npz, FLAC, Whisper JSON, TextGrids with other tiers ----

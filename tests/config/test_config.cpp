@@ -74,7 +74,8 @@ TEST(ConfigSet, ListsAreCommaSeparatedTrimmedAndSkipEmptyItems) {
 
 TEST(ConfigSet, BadValuesNameTheKeyAndTheValue) {
   Config c;
-  EXPECT_EQ(error_of([&] { config_set(c, "nope", "1"); }), "unknown config key 'nope' (run 'gmg config' for the list)");
+  EXPECT_EQ(error_of([&] { config_set(c, "nope", "1"); }),
+            "unknown config key 'nope' (run 'gmg config --keys' for the list)");
   EXPECT_EQ(error_of([&] { config_set(c, "l_pn", "2.5"); }), "config key 'l_pn': '2.5' is not a whole number");
   EXPECT_EQ(error_of([&] { config_set(c, "lambda_w", "abc"); }), "config key 'lambda_w': 'abc' is not a finite number");
   EXPECT_EQ(error_of([&] { config_set(c, "lambda_w", "inf"); }), "config key 'lambda_w': 'inf' is not a finite number");
@@ -93,8 +94,8 @@ TEST(ConfigSet, EnumKeysRejectAnUnknownNameListingTheChoices) {
   EXPECT_EQ(error_of([&] { config_set(c, "init", "best"); }), "config key 'init': 'best' is not feature or random");
   EXPECT_EQ(error_of([&] { config_set(c, "blend_curve", "cubic"); }),
             "config key 'blend_curve': 'cubic' is not linear or sigmoid");
-  EXPECT_EQ(error_of([&] { config_set(c, "blend_mode", "Offset"); }),  // names are exact
-            "config key 'blend_mode': 'Offset' is not inertialize, offset or crossfade");
+  EXPECT_EQ(error_of([&] { config_set(c, "blend_mode", "Offset"); }),  // names are exact, a near one is named
+            "config key 'blend_mode': 'Offset' is not inertialize, offset or crossfade (did you mean 'offset'?)");
   EXPECT_EQ(c.search.init, Config{}.search.init);
 }
 

@@ -308,5 +308,123 @@ TEST(Files, RegistryTracksTemporaryFiles) {
   EXPECT_EQ(register_temporary_file(std::string(5000, 'a')), -1);  // too long for the table
 }
 
+TEST(Files, OutputFileIsCheckedBeforeAnyWork) {
+  TempDir dir;
+  const std::vector<std::string> motion = {".bvh", ".npz"};
+  EXPECT_NO_THROW(check_output_file({"-o", dir.file("out.BVH")}, motion));
+  EXPECT_NO_THROW(check_output_file({"-o", ""}, motion));  // not given
+  EXPECT_EQ(error_of([&] {
+              check_output_file({"-o", dir.file("out.txt")}, motion);
+            }),
+            dir.file("out.txt") + ": -o must be a .bvh or .npz file (its extension chooses the format)");
+  EXPECT_EQ(error_of([&] {
+              check_output_file({"", dir.file("x.fbx")}, {".mp4", ".mkv", ".mov"});
+            }),
+            dir.file("x.fbx") + ": must be a .mp4, .mkv or .mov file (its extension chooses the format)");
+  std::filesystem::create_directories(dir.file("taken.bvh"));
+  EXPECT_EQ(error_of([&] {
+              check_output_file({"-o", dir.file("taken.bvh")}, motion);
+            }),
+            dir.file("taken.bvh") + ": -o is a folder, not a file");
+  ASSERT_EQ(::mkfifo(dir.file("pipe.bvh").c_str(), 0644), 0);
+  EXPECT_EQ(error_of([&] {
+              check_output_file({"-o", dir.file("pipe.bvh")}, motion);
+            }),
+            dir.file("pipe.bvh") + ": -o is a FIFO (named pipe), not a regular file");
+  EXPECT_EQ(error_of([&] {
+              check_output_file({"--report", dir.file("no/r.json")}, {".json"});
+            }),
+            dir.file("no/r.json") + ": --report: the folder " + dir.file("no") + " does not exist");
+  EXPECT_NO_THROW(check_output_file({"-o", "relative.bvh"}, motion));  // the working folder
+}
+
+TEST(Files, OutputIntoAReadOnlyFolderNamesTheFolderAndWhy) {
+  testing::SmallDisk disk(64, /*read_only=*/true);
+  if (!disk.ok()) GTEST_SKIP() << disk.why();
+  EXPECT_EQ(
+      error_of([&] {
+        check_output_file({"-o", disk.file("out.bvh")}, {".bvh"});
+      }),
+      disk.file("out.bvh") + ": -o: cannot write into the folder " + disk.path().string() + " (Read-only file system)");
+  EXPECT_EQ(
+      error_of([&] {
+        check_output_folder({"-o", disk.file("a/b")});
+      }),
+      disk.file("a/b") + ": -o: cannot write into the folder " + disk.path().string() + " (Read-only file system)");
+}
+
+TEST(Files, OutputFolderMustNotBeAFile) {
+  TempDir dir;
+  write_text(dir.file("f"), "x");
+  EXPECT_EQ(error_of([&] {
+              check_output_folder({"-o", dir.file("f")});
+            }),
+            dir.file("f") + ": -o is a file, not a folder");
+  EXPECT_EQ(error_of([&] {
+              check_output_folder({"-o", dir.file("f/sub")});
+            }),
+            dir.file("f/sub") + ": -o: " + dir.file("f") + " is a file, not a folder");
+  EXPECT_NO_THROW(check_output_folder({"-o", dir.file("new/deeper")}));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("new")));  // checked, not made
+}
+
+TEST(Files, AtomicWriteOnAFullDiskSaysSo) {
+  testing::SmallDisk disk(16);
+  if (!disk.ok()) GTEST_SKIP() << disk.why();
+  const std::string path = disk.file("big.bvh");
+  const std::string msg =
+      error_of([&] { write_file_atomically(path, [](std::ostream& os) { os << std::string(1 << 20, 'x'); }); });
+  EXPECT_EQ(msg, path + ": cannot write (No space left on device)");
+  EXPECT_EQ(entries_in(disk.path()), 0u);
+}
+
+TEST(Files, StaleTemporariesOfDeadProcessesAreRemoved) {
+  TempDir dir;
+  const pid_t dead = ::fork();  // a process id that is surely gone once reaped
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string gone = std::to_string(dead), alive = std::to_string(::getppid());
+  EXPECT_EQ(temporary_file_owner("out.mp4.tmp" + gone + "_3"), dead);
+  EXPECT_EQ(temporary_file_owner("out.mp4"), 0);
+  EXPECT_EQ(temporary_file_owner("out.tmp12.mp4"), 0);
+  for (const std::string& name :
+       std::vector<std::string>{"a.mp4.tmp" + gone + "_0", "b.MKV.tmp" + gone + "_7", "c.bvh.tmp" + gone + "_1",
+                                "d.mp4.tmp" + alive + "_0", "e.mp4", "f.mp4.tmpx_1"})
+    write_text(dir.file(name), "x");
+  EXPECT_EQ(remove_stale_temporaries(dir.path().string(), {".mp4", ".mkv"}), 2);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.mp4.tmp" + gone + "_0")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("b.MKV.tmp" + gone + "_7")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("c.bvh.tmp" + gone + "_1")));   // another kind of output
+  EXPECT_TRUE(std::filesystem::exists(dir.file("d.mp4.tmp" + alive + "_0")));  // its owner runs
+  EXPECT_TRUE(std::filesystem::exists(dir.file("e.mp4")));
+  const std::string t = temporary_name_for(dir.file("v.mp4"));
+  EXPECT_EQ(temporary_file_owner(std::filesystem::path(t).filename().string()), ::getpid());
+}
+
+TEST(Files, CreatedFoldersGoWhenTheCommandFails) {
+  TempDir dir;
+  {
+    const CreatedFolders folders(dir.file("a/b/c"));
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("a/b/c")));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a")));  // every folder it made, deepest first
+  {
+    CreatedFolders folders(dir.file("k/l"));
+    folders.keep();
+  }
+  EXPECT_TRUE(std::filesystem::is_directory(dir.file("k/l")));
+  {
+    const CreatedFolders folders(dir.file("k/m"));  // k was there: only m is its own
+    write_text(dir.file("k/m/file"), "x");          // not empty: kept
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir.file("k/m/file")));
+  write_text(dir.file("plain"), "x");
+  EXPECT_EQ(error_of([&] {
+              CreatedFolders f(dir.file("plain/sub"));
+            }).rfind(dir.file("plain/sub") + ": cannot create the folder (", 0),
+            0u);
+}
+
 }  // namespace
 }  // namespace gmg

@@ -217,5 +217,42 @@ TEST(Strings, DecodeUtf8RejectsOverlongSurrogatesAndTruncation) {
   EXPECT_FALSE(decode_utf8("ab", 2).has_value());  // at the end
 }
 
+TEST(Strings, EscapeNonprintableKeepsTextAndEscapesTheRest) {
+  EXPECT_EQ(escape_nonprintable("take.bvh: line 3 \\ ok"), "take.bvh: line 3 \\ ok");
+  EXPECT_EQ(escape_nonprintable("caf\xC3\xA9 \xE2\x82\xAC"), "caf\xC3\xA9 \xE2\x82\xAC");  // UTF-8 stays
+  EXPECT_EQ(escape_nonprintable("a\nb\rc\td"), "a\\nb\\rc\\td");
+  EXPECT_EQ(escape_nonprintable(std::string("\x1B[2J\x07\0\x7F", 7)), "\\x1b[2J\\x07\\x00\\x7f");
+  EXPECT_EQ(escape_nonprintable("caf\xE9"), "caf\\xe9");  // Latin-1: not UTF-8
+  EXPECT_EQ(escape_nonprintable("\xC2\x9B"
+                                "1m"),
+            "\\u009b1m");                                             // C1 CSI, a terminal escape
+  EXPECT_EQ(escape_nonprintable("\xED\xA0\x80"), "\\xed\\xa0\\x80");  // a surrogate, byte by byte
+  EXPECT_EQ(escape_nonprintable(""), "");
+}
+
+TEST(Strings, EditDistanceCountsASwapOfNeighboursAsOne) {
+  EXPECT_EQ(edit_distance("build", "build"), 0u);
+  EXPECT_EQ(edit_distance("biuld", "build"), 1u);  // a swap
+  EXPECT_EQ(edit_distance("buld", "build"), 1u);   // a deletion
+  EXPECT_EQ(edit_distance("buiild", "build"), 1u);
+  EXPECT_EQ(edit_distance("bxild", "build"), 1u);
+  EXPECT_EQ(edit_distance("render", "reenact"), 4u);
+  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  EXPECT_EQ(edit_distance("ca", "abc"), 3u);  // optimal string alignment: no edit of a swapped pair
+}
+
+TEST(Strings, NearestNameSuggestsOnlyPlausibleTypos) {
+  const std::vector<std::string> commands = {"build", "inspect", "reenact", "evaluate", "render"};
+  EXPECT_EQ(nearest_name("biuld", commands), "build");
+  EXPECT_EQ(nearest_name("REENACT", commands), "reenact");  // case alone
+  EXPECT_EQ(nearest_name("evalute", commands), "evaluate");
+  EXPECT_EQ(nearest_name("build", commands), std::nullopt);  // no typo
+  EXPECT_EQ(nearest_name("xyz", commands), std::nullopt);
+  EXPECT_EQ(nearest_name("-x", {"-o", "-j"}), std::nullopt);  // 1 edit of 2 letters is a guess
+  EXPECT_EQ(nearest_name("--grpah", {"--graph", "--audio"}), "--graph");
+  EXPECT_EQ(did_you_mean("l_pm", {"l_pn", "l_cn"}), " (did you mean 'l_pn'?)");  // the first of equals
+  EXPECT_EQ(did_you_mean("zzzz", {"l_pn"}), "");
+}
+
 }  // namespace
 }  // namespace gmg

@@ -74,6 +74,8 @@ void bvh_seeds(const fs::path& dir, const gmg::SynthClip& clip) {
   for (int i = 0; i < 40; ++i) deep += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\n";
   for (int i = 0; i <= 40; ++i) deep += "}\n";
   put(dir, "deep.bvh", deep + "MOTION\nFrames: 1\nFrame Time: 0.01\n5\n");
+  // Binary bytes where a token should be: the message quotes them escaped.
+  put(dir, "binary.bvh", std::string("HIERARCHY\nROOT \x1b[31m\x07\xff\xfe\n{\nOFFSET 0 0 0\n"));
 }
 
 void wav_seeds(const fs::path& dir, const gmg::SynthClip& clip) {
@@ -97,6 +99,19 @@ void wav_seeds(const fs::path& dir, const gmg::SynthClip& clip) {
   put(dir, "ten_mhz.wav", wav_bytes(1, 1, 10000019, 16, std::string(16, '\x01')));
 }
 
+// What is given as speech but cannot be: silence, 10 ms, quiet hiss, and files that are not WAV.
+void audio_bytes_seeds(const fs::path& dir) {
+  put(dir, "silence.wav", wav_bytes(1, 1, 8000, 16, std::string(16000, '\0')));
+  put(dir, "ten_ms.wav", wav_bytes(1, 1, 8000, 16, std::string(160, '\x40')));
+  std::string hiss;
+  for (int i = 0; i < 8000; ++i) append<std::int16_t>(hiss, static_cast<std::int16_t>((i * 7919) % 17 - 8));
+  put(dir, "hiss.wav", wav_bytes(1, 1, 8000, 16, hiss));
+  put(dir, "text.wav", "0.5\t0.9\thello\n");
+  put(dir, "id3.wav", std::string("ID3\x04\0\0\0\0\0\x10\xff\xfb\x90\x64", 14));
+  put(dir, "hierarchy.wav", "HIERARCHY\nROOT hips\n");
+  put(dir, "escape.bin", std::string("\x1b]0;title\x07\xc2\x9b\xe2\x80\xae\xf4\x90\x80\x80\xed\xa0\x80"));
+}
+
 void transcript_seeds(const fs::path& root, const gmg::SynthClip& clip) {
   std::string tsv;
   for (std::size_t i = 0; i < clip.words.size() && i < 8; ++i)
@@ -104,6 +119,7 @@ void transcript_seeds(const fs::path& root, const gmg::SynthClip& clip) {
            "\n";
   put(root / "tsv", "synth.tsv", tsv);
   put(root / "tsv", "spaces_crlf.tsv", "0.5  0.9  hello there\r\n1.0 1.2 #\r\n\r\n");
+  put(root / "tsv", "binary.tsv", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\t\x1b[2J\n", 22));
   const std::string long_grid =
       "File type = \"ooTextFile\"\nObject class = \"TextGrid\"\n\nxmin = 0 \nxmax = 2 \ntiers? <exists> \nsize = 1 \n"
       "item []: \n    item [1]:\n        class = \"IntervalTier\" \n        name = \"words\" \n        xmin = 0 \n"
@@ -164,6 +180,8 @@ void config_seeds(const fs::path& dir) {
       R"({"l_pn": 2, "w_full": [1, 0.5, 0.5, 0.2, 0.2, 0.2, 0.1, 0.1, 0.1, 0.1], )"
       R"("lock_joints": ["a", "b"], "init": "random", "seed": 18446744073709551615})");
   put(dir, "huge.json", R"({"l_npaths": 1e309})");
+  // A misspelt key and a misspelt mode: errors that suggest the nearest name.
+  put(dir, "typos.json", R"({"l_pm": 3, "planner": "papr"})");
 }
 
 void csv_seeds(const fs::path& dir) {
@@ -224,6 +242,7 @@ int main(int argc, char** argv) {
     csv_seeds(root / "csv");
     npz_seeds(root / "npz");
     whisper_seeds(root / "whisper_json");
+    audio_bytes_seeds(root / "audio_bytes");
   } catch (const std::exception& e) {
     std::cerr << "gmg_fuzz_seeds: " << e.what() << "\n";
     return 1;

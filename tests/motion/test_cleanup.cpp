@@ -100,7 +100,7 @@ TEST(Cleanup, AppliedToReferencesWhenConfigured) {
   EXPECT_EQ(testing::error_of([&] {
               graph_build_from_files({{dir.file("ref.bvh"), {dir.file("ref.wav"), ""}}}, cfg);
             }),
-            dir.file("ref.bvh") + ": clean-up joint 'Nope' is not in the skeleton");
+            dir.file("ref.bvh") + ": clean-up joint 'Nope' (lock_joints) is not in the skeleton");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "audio/audio_file.h"
+#include "audio/wav.h"
 #include "engine/assemble/timeline.h"
 #include "engine/cli/cli.h"
 #include "engine/core/error.h"
@@ -22,6 +23,7 @@
 #include "graph/graph_io.h"
 #include "graph/stats.h"
 #include "tests/cli/cli_run.h"
+#include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -138,6 +140,72 @@ TEST_F(SynthPipeline, BadInputsFailWithoutOutput) {
                      "l_npaths=0"}),
             0);
   EXPECT_FALSE(std::filesystem::exists(file("x.bvh")));
+}
+
+// The checks about the inputs themselves live in the library, so every caller (the command line,
+// batch, the Python module) refuses and warns alike.
+TEST_F(SynthPipeline, SilentOrShortSpeechIsRefusedUnlessAllowed) {
+  const MotionGraph g = graph_load(file("ref.gmg"));
+  audio::Audio quiet;
+  quiet.sample_rate = 16000;
+  quiet.samples.assign(std::size_t{16000} * 12, 0.0f);
+  audio::write_wav_pcm16(file("silence.wav"), quiet);
+  quiet.samples.resize(160);  // 10 ms
+  audio::write_wav_pcm16(file("click.wav"), quiet);
+  const Config cfg;
+  EXPECT_EQ(error_of([&] {
+              reenact(g, {file("silence.wav"), ""}, cfg, "ref.gmg");
+            }),
+            file("silence.wav") +
+                ": is silent: every sample is zero, and speech needs -60 dB or more; --allow-silence uses it anyway");
+  EXPECT_EQ(error_of([&] {
+              reenact(g, {file("click.wav"), ""}, cfg, "ref.gmg");
+            }),
+            file("click.wav") +
+                ": holds 0.01 s of audio, too short to be speech (gmg needs at least 0.5 s; --allow-silence uses it "
+                "anyway)");
+  // A reference speech is checked the same way, before its motion is read.
+  EXPECT_EQ(error_of([&] {
+              graph_build_from_files({{file("ref.bvh"), {file("click.wav"), ""}}}, cfg);
+            }),
+            error_of([&] {
+              reenact(g, {file("click.wav"), ""}, cfg, "ref.gmg");
+            }));
+  SpeechFiles allowed{file("silence.wav"), ""};
+  allowed.allow_silence = true;
+  const Reenactment r = reenact(g, allowed, cfg, "ref.gmg");
+  EXPECT_EQ(r.motion.frame_count, 12 * 30);
+}
+
+TEST_F(SynthPipeline, ReferenceAudioAndMotionOfDifferentLengthsWarnNamingBoth) {
+  // ref.bvh lasts 40 s; test.wav 15 s: a mismatch of 25 s.
+  ReferenceFiles clip{file("ref.bvh"), {file("test.wav"), ""}};
+  std::vector<std::string> warnings;
+  graph_build_from_files({clip}, Config{}, {}, 1, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], file("test.wav") + ": lasts 15.0 s but its motion " + file("ref.bvh") +
+                             " lasts 40.0 s (25.0 s apart): both are read from their starts, so check they are one "
+                             "recording");
+  warnings.clear();
+  graph_build_from_files({{file("ref.bvh"), {file("ref.wav"), ""}}}, Config{}, {}, 1, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();  // the same recording: nothing to say
+}
+
+TEST_F(SynthPipeline, LockJointsMissingFromABuiltGraphNameTheJoint) {
+  const MotionGraph g = graph_load(file("ref.gmg"));
+  Config cfg;
+  cfg.cleanup.lock_joints = {"RightHnd"};
+  EXPECT_EQ(error_of([&] { check_lock_joints_of_graph(g, cfg, "ref.gmg"); }),
+            "ref.gmg: lock_joints names 'RightHnd', which is not a joint of its skeleton (did you mean 'RightHand'?)");
+  EXPECT_EQ(error_of([&] {
+              reenact(g, {file("test.wav"), ""}, cfg, "ref.gmg");
+            }),
+            error_of([&] { check_lock_joints_of_graph(g, cfg, "ref.gmg"); }));
+  cfg.cleanup.lock_joints = {"RightHand"};
+  EXPECT_EQ(check_lock_joints_of_graph(g, cfg, "ref.gmg"),
+            "ref.gmg: lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')");
+  cfg.cleanup.lock_joints.clear();
+  EXPECT_EQ(check_lock_joints_of_graph(g, cfg, "ref.gmg"), "");
 }
 
 TEST(PipelineRealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {

@@ -60,19 +60,20 @@ def test_arrays_go_back_in_as_a_motion_of_the_same_skeleton(synth, tmp_path):
 
 
 def test_errors_are_gmg_errors_with_the_command_lines_messages(synth, tmp_path):
+    # (call, command line, its exit code: 1 a bad input, 2 a usage error such as a bad --set)
     cases = [
-        (lambda: gmg.load(tmp_path / "missing.gmg"), ["inspect", tmp_path / "missing.gmg"]),
+        (lambda: gmg.load(tmp_path / "missing.gmg"), ["inspect", tmp_path / "missing.gmg"], 1),
         (lambda: gmg.reenact(synth / "ref.gmg", tmp_path / "missing.wav"),
-         ["reenact", "--graph", synth / "ref.gmg", "--audio", tmp_path / "missing.wav", "-o", tmp_path / "o.bvh"]),
+         ["reenact", "--graph", synth / "ref.gmg", "--audio", tmp_path / "missing.wav", "-o", tmp_path / "o.bvh"], 1),
         (lambda: gmg.read_motion(synth / "ref.tsv"),
-         ["convert", synth / "ref.tsv", tmp_path / "o.npz"]),
+         ["convert", synth / "ref.tsv", tmp_path / "o.npz"], 1),
         (lambda: gmg.reenact(synth / "ref.gmg", synth / "new.wav", set={"l_pn": "0"}),
          ["reenact", "--graph", synth / "ref.gmg", "--audio", synth / "new.wav", "--set", "l_pn=0",
-          "-o", tmp_path / "o.bvh"]),
+          "-o", tmp_path / "o.bvh"], 2),
     ]
-    for call, args in cases:
+    for call, args, expected_code in cases:
         code, _, err = run_gmg(*args, check=False)
-        assert code == 1, err
+        assert code == expected_code, err
         with pytest.raises(gmg.Error) as e:
             call()
         assert "gmg: error: " + str(e.value) + "\n" == err
