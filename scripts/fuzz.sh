@@ -21,7 +21,7 @@ mkdir -p "$work/artifacts" "$work/corpus"
 build-asan/gmg_fuzz_seeds "$work/seeds"
 # alloc_dealloc_mismatch=0: see scripts/sanitize.sh (libstdc++ std::stable_sort under clang).
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:alloc_dealloc_mismatch=0}"
-export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 status=0
 for harness in build-asan/fuzz_*; do

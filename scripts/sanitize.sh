@@ -20,7 +20,7 @@ cmake --build build-asan -j"$jobs"
 # alloc_dealloc_mismatch=0: with clang, libstdc++ 12's std::stable_sort frees its temporary buffer
 # in a way ASan reports as "operator new vs free" (inside <bits/stl_tempbuf.h>, not gmg's code).
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:alloc_dealloc_mismatch=0}"
-export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 cd build-asan
 # The style and layering checks do not depend on the build, and the install test checks a
