@@ -80,9 +80,10 @@ struct SearchParams {
   double speech_weight = 3.0;
   // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
   // (1 = its typical motion) per frame. BEAT2's speaker moves most between phrases: at 1 the
-  // output's longest rest on new speech was 0.3 s against the capture's 0.77 s, at 6 0.46 s;
-  // ZEGGS's sync lift rose with it (0.49 -> 0.54, 6 folds x 10 seeds).
-  double rest_weight = 6.0;
+  // output's longest rest on new speech was 0.3 s against the capture's 0.77 s, at 6 0.57 s, at
+  // 12 0.69 s; resting where the speech rests also lifted its sync (new speech corr lift
+  // +0.15 -> +0.21, ZEGGS folds +0.57 -> +0.60; 24 replayed the few still stretches more).
+  double rest_weight = 12.0;
   // Part of the speech cost: beat_weight x the end cost of a path (search/speech_match.h end_cost:
   // 0 when it ends on a kinematic beat of the reference, 1 far from one). 1 against 0.5: ZEGGS beat
   // consistency lift 0.069 -> 0.080 at speech_weight 2.
@@ -94,6 +95,12 @@ struct SearchParams {
   // fourth play costs 3 x 9 and does not happen (with 30 s, 4 plays in 6 of 10 new-speech outputs).
   double reuse_weight = 3.0;
   double reuse_halflife_s = 120.0;
+  // And a cap: a frame played reuse_cap_plays times within reuse_cap_window_s output seconds
+  // costs reuse_weight x 100 more (search/reuse.h). The decayed count alone let a stretch that
+  // suits many pauses be played a fourth time within a minute (rest_weight 12: 1 of 10 outputs
+  // of new speech). 0 plays = no cap.
+  int reuse_cap_plays = 3;
+  double reuse_cap_window_s = 90.0;
 };
 
 // Throws gmg::Error naming the first key out of range.
