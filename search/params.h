@@ -75,8 +75,8 @@ struct SearchParams {
   // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
   // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
   // without speech.
-  // 3 against 1.5: new BEAT2 speech corr lift +0.07 -> +0.15, beat lift +0.004 -> +0.008, for
-  // jerk 1.15 -> 1.19 x the reference's (docs/results.md has the curve).
+  // 3 against 1.5: new BEAT2 speech corr lift +0.17 -> +0.21, beat lift +0.006 -> +0.012, for
+  // jerk 1.17 -> 1.18 x the reference's (docs/results.md has the curve).
   double speech_weight = 3.0;
   // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
   // (1 = its typical motion) per frame. BEAT2's speaker moves most between phrases: at 1 the
