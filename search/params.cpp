@@ -25,6 +25,8 @@ void search_params_validate(const SearchParams& p) {
   require_param(p.rest_weight >= 0 && p.rest_weight <= 1000, "rest_weight must be in [0, 1000]");
   require_param(p.reuse_weight >= 0 && p.reuse_weight <= 1000, "reuse_weight must be in [0, 1000]");
   require_param(p.reuse_halflife_s > 0 && p.reuse_halflife_s <= 1e6, "reuse_halflife_s must be in (0, 1e6]");
+  require_param(p.reuse_cap_plays >= 0 && p.reuse_cap_plays <= 100, "reuse_cap_plays must be in [0, 100]");
+  require_param(p.reuse_cap_window_s >= 0 && p.reuse_cap_window_s <= 1e6, "reuse_cap_window_s must be in [0, 1e6]");
 }
 
 }  // namespace gmg

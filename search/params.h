@@ -65,30 +65,42 @@ struct SearchParams {
   int merge_below = 10;
   // Seeded variety (natural planner): the share of the reference's seconds each seed withholds
   // as places to jump to, so different seeds give clearly different motions (search/planner.cpp).
-  // 0: every seed plans the same.
-  double variety = 0.4;
+  // 0: every seed plans the same. 0.3 against 0.4: more of the reference to choose from (no frame
+  // past 3 plays in 62 s of new BEAT2 speech), seeds of 11 s ZEGGS folds still 0.29 of the
+  // reference's pose variation apart (0.14 at 0.25).
+  double variety = 0.3;
 
   // ---- speech-driven (natural planner; search/speech_match.h, search/reuse.h) ----
   // The knob that trades sync for smoothness: the weight of the speech distance (mean squared
   // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
   // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
   // without speech.
-  double speech_weight = 1.5;
+  // 3 against 1.5: new BEAT2 speech corr lift +0.17 -> +0.21, beat lift +0.006 -> +0.012, for
+  // jerk 1.17 -> 1.18 x the reference's (docs/results.md has the curve).
+  double speech_weight = 3.0;
   // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
   // (1 = its typical motion) per frame. BEAT2's speaker moves most between phrases: at 1 the
-  // output's longest rest on new speech was 0.3 s against the capture's 0.77 s, at 6 0.46 s;
-  // ZEGGS's sync lift rose with it (0.49 -> 0.54, 6 folds x 10 seeds).
-  double rest_weight = 6.0;
+  // output's longest rest on new speech was 0.3 s against the capture's 0.77 s, at 6 0.57 s, at
+  // 12 0.69 s; resting where the speech rests also lifted its sync (new speech corr lift
+  // +0.15 -> +0.21, ZEGGS folds +0.57 -> +0.60; 24 replayed the few still stretches more).
+  double rest_weight = 12.0;
   // Part of the speech cost: beat_weight x the end cost of a path (search/speech_match.h end_cost:
   // 0 when it ends on a kinematic beat of the reference, 1 far from one). 1 against 0.5: ZEGGS beat
   // consistency lift 0.069 -> 0.080 at speech_weight 2.
   double beat_weight = 1.0;
   // Weight of the reuse cost (a stretch just played costs 1 per play), and the half-life of a play
   // in output seconds. A replay is worth it only when the speech distance it saves, at most about
-  // speech_weight (1 = unrelated speech), exceeds reuse_weight x its decayed plays: with 3 and 30 s
-  // a stretch that alone suits the speech comes back after some 45 s, at most 3 times in 90 s.
+  // speech_weight x the speech distance (1 = unrelated speech), exceeds reuse_weight x its decayed
+  // plays squared. 120 s against 30 s: plays within one 60-90 s output barely decay, so a frame's
+  // fourth play costs 3 x 9 and does not happen (with 30 s, 4 plays in 6 of 10 new-speech outputs).
   double reuse_weight = 3.0;
-  double reuse_halflife_s = 30.0;
+  double reuse_halflife_s = 120.0;
+  // And a cap: a frame played reuse_cap_plays times within reuse_cap_window_s output seconds
+  // costs reuse_weight x 100 more (search/reuse.h). The decayed count alone let a stretch that
+  // suits many pauses be played a fourth time within a minute (rest_weight 12: 1 of 10 outputs
+  // of new speech). 0 plays = no cap.
+  int reuse_cap_plays = 3;
+  double reuse_cap_window_s = 90.0;
 };
 
 // Throws gmg::Error naming the first key out of range.

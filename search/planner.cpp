@@ -43,7 +43,8 @@ class Planner {
         index_(initialisation_prepare(g, subs, params)),
         junction_(g),
         speech_(g, natural_ ? test_speech : std::vector<float>{}, total_frames(subs), params.rest_weight),
-        reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps) {
+        reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps, params.reuse_cap_plays,
+               static_cast<int>(std::lround(params.reuse_cap_window_s * g.motion.fps))) {
     if (natural_ && params.variety > 0.0) draw_preferences();
   }
 
@@ -278,8 +279,14 @@ class Planner {
       natural_request(seg.sub, request);
       std::vector<BeamCandidate> candidates;
       if (last >= 0 && continues(last)) add_continuations(seg.sub, last + 1, request, candidates);
-      // With a continuation at hand one search decides; retries are for when nothing fits.
-      const int max_attempts = candidates.empty() ? params_.retries + 1 : 1;
+      // With a continuation at hand one search decides; retries are for when nothing fits, and
+      // for when the continuation would play a frame past its reuse cap (with only it at hand, a
+      // first search that found nothing let it play a frame a fourth time in a minute).
+      bool continuation_capped = true;
+      for (const BeamCandidate& c : candidates)
+        if (c.cost < params_.reuse_weight * ReuseTracker::kCapCost) continuation_capped = false;
+      const int max_attempts =
+          candidates.empty() || (params_.reuse_weight > 0.0 && continuation_capped) ? params_.retries + 1 : 1;
       BeamResult r = attempts(k, request, first_starts, &seg.retries, max_attempts);
       candidates.insert(candidates.end(), r.candidates.begin(), r.candidates.end());
       if (!candidates.empty()) {

@@ -2,13 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gmg {
 
-ReuseTracker::ReuseTracker(int frames, double halflife)
+ReuseTracker::ReuseTracker(int frames, double halflife, int cap_plays, int cap_window)
     : count_(static_cast<std::size_t>(std::max(0, frames)), 0.0),
       last_(count_.size(), 0),
-      decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)) {}
+      decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)),
+      cap_plays_(std::max(0, cap_plays)),
+      cap_window_(std::max(0, cap_window)),
+      // Never played: a time so early that no window reaches it.
+      recent_(count_.size() * static_cast<std::size_t>(cap_plays_), std::numeric_limits<int>::min() / 2) {}
 
 double ReuseTracker::plays(int f, int time) const {
   const std::size_t k = static_cast<std::size_t>(f);
@@ -23,6 +28,11 @@ void ReuseTracker::play(const std::vector<int>& path, int time) {
     const std::size_t k = static_cast<std::size_t>(f);
     count_[k] = plays(f, time) + 1.0;
     last_[k] = time;
+    if (cap_plays_ > 0) {
+      int* times = recent_.data() + k * static_cast<std::size_t>(cap_plays_);
+      std::copy(times + 1, times + cap_plays_, times);
+      times[cap_plays_ - 1] = time;
+    }
     previous = f;
   }
 }

@@ -7,6 +7,11 @@
 // one played a half-life ago half that, and so does a stretch that shares only some frames with it:
 // a short popular stretch (an onset-ended gesture) replayed inside ever different paths was what
 // the mean over a path's frames let through (4-6 plays of its frames in a minute).
+//
+// The decayed count prices a replay against what it saves, so a stretch that alone suits many
+// pauses was still played a fourth time in a minute when its count had decayed just enough. The
+// cap is exact: a frame already played cap_plays times within the last cap_window output frames
+// costs kCapCost more, far above any speech distance or junction it could save.
 #pragma once
 
 #include <vector>
@@ -15,8 +20,12 @@ namespace gmg {
 
 class ReuseTracker {
  public:
-  // frames: the graph's frame count; halflife in output frames (> 0).
-  ReuseTracker(int frames, double halflife);
+  // The cap's cost, in the units of frame_cost (reuse_weight times it is paid).
+  static constexpr double kCapCost = 100.0;
+
+  // frames: the graph's frame count; halflife in output frames (> 0); cap_plays (0 = no cap)
+  // plays within cap_window output frames.
+  ReuseTracker(int frames, double halflife, int cap_plays = 0, int cap_window = 0);
 
   // The frames of a committed path, played from output frame `time` on.
   void play(const std::vector<int>& path, int time);
@@ -24,10 +33,17 @@ class ReuseTracker {
   // Frame f's decayed play count at output frame `time`.
   double plays(int f, int time) const;
 
-  // Its cost: plays squared.
+  // Whether frame f has had cap_plays plays within cap_window output frames before `time`.
+  bool capped(int f, int time) const {
+    if (cap_plays_ <= 0) return false;
+    // recent_ holds f's last cap_plays play times, oldest first.
+    return recent_[static_cast<std::size_t>(f) * static_cast<std::size_t>(cap_plays_)] > time - cap_window_;
+  }
+
+  // Its cost: plays squared, plus kCapCost when capped.
   double frame_cost(int f, int time) const {
     const double p = plays(f, time);
-    return p * p;
+    return p * p + (capped(f, time) ? kCapCost : 0.0);
   }
 
   // The largest frame_cost over a path's frames.
@@ -41,6 +57,9 @@ class ReuseTracker {
   std::vector<double> count_;  // at time last_[f]
   std::vector<int> last_;
   double decay_per_frame_;  // ln 2 / halflife
+  int cap_plays_;
+  int cap_window_;
+  std::vector<int> recent_;  // per frame, its last cap_plays_ play times, oldest first
 };
 
 }  // namespace gmg

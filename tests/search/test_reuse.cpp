@@ -36,5 +36,27 @@ TEST(Reuse, APathPaysItsMostPlayedFrame) {
   EXPECT_EQ(w[3], 0.0);
 }
 
+TEST(Reuse, AFrameAtItsCapWithinTheWindowCostsTheCap) {
+  ReuseTracker r(10, 1e12, 3, 90);  // no decay to speak of: 3 plays within 90 output frames
+  r.play({4}, 0);
+  r.play({4}, 10);
+  EXPECT_FALSE(r.capped(4, 20)) << "two plays are under the cap";
+  r.play({4}, 20);
+  EXPECT_TRUE(r.capped(4, 20));
+  EXPECT_TRUE(r.capped(4, 89)) << "the play at 0 is within the 90 frames before 89";
+  EXPECT_FALSE(r.capped(4, 90)) << "90 frames after it, it no longer counts";
+  EXPECT_NEAR(r.frame_cost(4, 50), 9.0 + ReuseTracker::kCapCost, 1e-6);
+  EXPECT_NEAR(r.frame_cost(4, 90), 9.0, 1e-6);
+  EXPECT_FALSE(r.capped(5, 50)) << "other frames are not";
+  r.play({4}, 95);  // the last three plays: 10, 20, 95
+  EXPECT_TRUE(r.capped(4, 99));
+  EXPECT_FALSE(r.capped(4, 100));
+  ReuseTracker none(10, 30.0);  // no cap
+  none.play({4, 5}, 0);
+  none.play({4}, 1);
+  none.play({4}, 2);
+  EXPECT_FALSE(none.capped(4, 3));
+}
+
 }  // namespace
 }  // namespace gmg
