@@ -9,15 +9,15 @@
 #include <numeric>
 #include <string>
 
+#include "audio/lanes.h"
 #include "engine/core/error.h"
 #include "engine/core/math.h"
 
 namespace gmg::audio {
 namespace {
 
-// Eight doubles as one vector (GCC and Clang vector extensions): lane-wise IEEE
-// arithmetic, so each lane rounds exactly as the scalar code would (contraction is off).
-using Lanes = double __attribute__((vector_size(64)));
+using lanes::Lanes;
+using lanes::LanesF;
 
 // 192 kHz against a coprime target rate: the WAV reader's highest rate.
 constexpr long long kMaxReducedRate = 192000;
@@ -80,6 +80,7 @@ struct Polyphase {
   long long phase_len = (taps + up - 1) / up;
   long long n_in = static_cast<long long>(x.size());
   std::vector<double> xt{};  // a tile's stretch of x, transposed
+  std::vector<float> yt{};   // a tile's outputs, transposed
 
   // Output n's tap k = p (its phase, 0 <= p < up) is the first to land on a sample of xu: it reads
   // x at i0 (negative before the signal starts).
@@ -123,11 +124,13 @@ struct Polyphase {
         ++ij;
       }
     };
+    // Output n + j + l * up goes to yt[j][l] (sixteen floats per phase, one vector store), and the
+    // tile is transposed into y at the end, where lane l's outputs are contiguous.
+    yt.resize(static_cast<std::size_t>(up * kLanes));
     const auto store = [&](long long j, const Lanes& lo, const Lanes& hi) {
-      for (int l = 0; l < kLanes; ++l) {
-        const long long o = n + j + l * up;
-        if (o < n_out) y[static_cast<std::size_t>(o)] = static_cast<float>(l < 8 ? lo[l] : hi[l - 8]);
-      }
+      const LanesF flo = __builtin_convertvector(lo, LanesF), fhi = __builtin_convertvector(hi, LanesF);
+      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes)], &flo, sizeof flo);
+      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + 8)], &fhi, sizeof fhi);
     };
     long long pa = p, ia = x0;
     for (long long j = 0; j < up; j += 2) {
@@ -158,6 +161,26 @@ struct Polyphase {
       if (two) store(j + 1, b0, b1);
       pa = two ? pb : pa;
       ia = two ? ib : ia;
+    }
+    if (n + kLanes * up <= n_out) {
+      // Blocks of 8 phases x 8 lanes transposed in registers, the rest one by one.
+      float* dst = &y[static_cast<std::size_t>(n)];
+      long long j0 = 0;
+      for (; j0 + lanes::kWidth <= up; j0 += lanes::kWidth) {
+        for (int half = 0; half < kLanes; half += lanes::kWidth) {
+          LanesF block[lanes::kWidth];
+          for (int i = 0; i < lanes::kWidth; ++i)
+            std::memcpy(&block[i], &yt[static_cast<std::size_t>((j0 + i) * kLanes + half)], sizeof block[i]);
+          lanes::transpose8(block);
+          for (int i = 0; i < lanes::kWidth; ++i) std::memcpy(dst + (half + i) * up + j0, &block[i], sizeof block[i]);
+        }
+      }
+      for (int l = 0; l < kLanes; ++l)
+        for (long long j = j0; j < up; ++j) dst[l * up + j] = yt[static_cast<std::size_t>(j * kLanes + l)];
+    } else {
+      for (int l = 0; l < kLanes; ++l)
+        for (long long j = 0; j < up && n + l * up + j < n_out; ++j)
+          y[static_cast<std::size_t>(n + l * up + j)] = yt[static_cast<std::size_t>(j * kLanes + l)];
     }
   }
 };
