@@ -379,10 +379,11 @@ TEST(OnsetsVsLibrosa, EnvelopeAndOnsetsAgree) {
               << matched << " (" << 100.0 * match_rate << " %), identical peaks " << peaks_equal << "; detect_onsets "
               << ms << " ms\n";
 
-    // Measured (FFTW's real-input FFT, this machine): max |d| <= 8.6e-6 and
-    // mean |d| <= 7.2e-7 on all four files (6.9e-6 and 6.9e-7 with aubio's
-    // halfcomplex FFT) -- the references are printed with 6 decimals -- and
-    // every peak and onset identical. The bounds leave ~15x
+    // Measured (FFTW's complex FFT of the even and odd samples, split in
+    // double, this machine): max |d| <= 8.6e-6 and mean |d| <= 7.2e-7 on all
+    // four files, as with FFTW's real-input FFT (6.9e-6 and 6.9e-7 with
+    // aubio's halfcomplex FFT) -- the references are printed with 6 decimals
+    // -- and every peak and onset identical. The bounds leave ~15x
     // room for other FFT code paths; a misaligned frame or a wrong filter
     // shows up as differences of 0.1 and more.
     EXPECT_EQ(env.size(), ref.envelope.size());
