@@ -261,7 +261,7 @@ struct RealFft {
     static const auto make = [](bool im) {
       std::vector<double> v(kBins);
       for (int k = 0; k < kBins; ++k) {
-        const double a = kPi * k / (kNfft / 2);
+        const double a = kPi * k / (0.5 * kNfft);
         v[static_cast<std::size_t>(k)] = im ? -std::sin(a) : std::cos(a);
       }
       return v;
@@ -297,8 +297,9 @@ struct SpectrogramBlock {
   const fftwf_plan plan = fft_plan();
   FftBuffers fft;
   RealFft split;
-  // rows[l * kBlocks + b]: frame l's bins 8 b .. 8 b + 7 (the last block padded with zeros).
-  std::vector<Lanes> rows = std::vector<Lanes>(static_cast<std::size_t>(kBlocks * kLanes));
+  // rows[l * kRow + k]: frame l's bin k (the last block of eight padded with zeros).
+  static constexpr int kRow = kBlocks * kLanes;
+  std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kLanes), 0.0);
   // power[k]: bin k of the eight frames, so a band's weighted sum is one vector operation per bin
   // for all eight, each frame's products still summed in ascending bin order.
   std::vector<Lanes> power = std::vector<Lanes>(static_cast<std::size_t>(kBlocks * kLanes));
@@ -306,18 +307,19 @@ struct SpectrogramBlock {
   // Frames t0 .. t0 + 7 (those before `frames`; silence after) into power.
   void compute(const std::vector<float>& y, long long t0, long long frames) {
     for (int l = 0; l < kLanes; ++l) {
-      Lanes* row = &rows[static_cast<std::size_t>(l * kBlocks)];
+      double* row = &rows[static_cast<std::size_t>(l * kRow)];
       if (t0 + l >= frames) {
-        std::fill(row, row + kBlocks, Lanes{});
+        std::fill(row, row + kRow, 0.0);
         continue;
       }
       windowed_frame(y, t0 + l, fft.in);
       fftwf_execute_dft(plan, reinterpret_cast<fftwf_complex*>(fft.in), fft.out);
-      split.power(fft.out, &row[0][0]);
+      split.power(fft.out, row);
     }
     for (int b = 0; b < kBlocks; ++b) {
       Lanes block[kLanes];
-      for (int l = 0; l < kLanes; ++l) block[l] = rows[static_cast<std::size_t>(l * kBlocks + b)];
+      for (int l = 0; l < kLanes; ++l)
+        std::memcpy(&block[l], &rows[static_cast<std::size_t>(l * kRow + b * kLanes)], sizeof block[l]);
       transpose8(block);
       for (int j = 0; j < kLanes; ++j) power[static_cast<std::size_t>(b * kLanes + j)] = block[j];
     }
