@@ -62,6 +62,11 @@ OnsetAnalysis detect_onsets(Audio&& audio, const OnsetParams& params);
 // backtracking. The result's `envelope` is `envelope`.
 OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, const OnsetParams& params);
 
+// librosa.power_to_db(power, ref=1, amin=1e-10) without top_db, 10 log10(max(1e-10, power)), as
+// the spectrogram computes it eight values at a time (exposed for tests): within a few units in the
+// last place of 10 * std::log10; +inf stays +inf, NaN gives -100 as std::max(1e-10, NaN) does.
+double power_to_db(double power);
+
 // Motion frames of the onsets: round(t * fps) of every onset time, sorted,
 // without duplicates. Onsets outside [0, num_frames) are dropped, not clipped:
 // a reference's audio often outlasts its motion, and its trailing onsets

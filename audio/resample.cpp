@@ -9,16 +9,15 @@
 #include <numeric>
 #include <string>
 
+#include "audio/lanes.h"
 #include "engine/core/error.h"
 #include "engine/core/math.h"
 
 namespace gmg::audio {
 namespace {
 
-// Eight doubles (and floats) as one vector (GCC and Clang vector extensions): lane-wise IEEE
-// arithmetic, so each lane rounds exactly as the scalar code would (contraction is off).
-using Lanes = double __attribute__((vector_size(64)));
-using LanesF = float __attribute__((vector_size(32)));
+using lanes::Lanes;
+using lanes::LanesF;
 
 // 192 kHz against a coprime target rate: the WAV reader's highest rate.
 constexpr long long kMaxReducedRate = 192000;
@@ -61,8 +60,18 @@ std::shared_ptr<const std::vector<double>> polyphase_filter(long long up, long l
 
 // The polyphase form of the resampler for one signal and filter (scipy's alignment, see
 // resample_poly): output n is sum_k h[k] * xu[n * down + k - half_len].
+//
+// Outputs n + l * up (l = 0..15) share a phase and read x at i0 + l * down: a tile of 16 * up
+// outputs is computed phase by phase, sixteen outputs at once (two vectors of eight doubles), from
+// a transposed copy of its stretch of x converted to double (xt[j][l] = x[x0 + l * down + j], zero
+// outside x), so the sixteen products of a tap are two vector operations. Two phases are summed
+// side by side: each sum is a chain of dependent additions, and four independent chains keep the
+// adder busy where one would wait on its own latency. Each output still sums its products in
+// ascending tap order, from 0.0, as the formula does: a tap outside x adds h * 0 = +-0, which
+// leaves a sum of +0 before the first real product as +0 and a nonzero sum as it is (it can only
+// turn a sum of -0 into +0, after the last one).
 struct Polyphase {
-  static constexpr int kLanes = 8;
+  static constexpr int kLanes = 16;
   const std::vector<float>& x;
   const std::vector<double>& phases;  // polyphase_filter(up, down)
   long long up, down;
@@ -70,79 +79,108 @@ struct Polyphase {
   long long taps = 2 * half_len + 1;
   long long phase_len = (taps + up - 1) / up;
   long long n_in = static_cast<long long>(x.size());
-  std::vector<float> xt{};  // a tile's stretch of x, transposed
+  std::vector<double> xt{};  // a tile's stretch of x, transposed
+  std::vector<float> yt{};   // a tile's outputs, transposed
 
-  // Output n's first tap: phase p = k0 % up, taps from t0 = k0 / up on, reading x from i0.
-  void first_tap(long long n, long long& p, long long& t0, long long& i0) const {
+  // Output n's tap k = p (its phase, 0 <= p < up) is the first to land on a sample of xu: it reads
+  // x at i0 (negative before the signal starts).
+  void first_tap(long long n, long long& p, long long& i0) const {
     const long long base = n * down - half_len;  // xu index of tap k = 0
-    long long k0 = ((-base) % up + up) % up;     // first tap with (base + k) divisible by up
-    i0 = (base + k0) / up;                       // x index of tap k0 (may be negative)
-    if (i0 < 0) {
-      k0 += (-i0) * up;
-      i0 = 0;
-    }
-    p = k0 % up;
-    t0 = k0 / up;
+    p = ((-base) % up + up) % up;
+    i0 = (base + p) / up;  // exact
   }
 
-  // Output n, its products summed in ascending tap order.
-  float one(long long n) const {
-    long long p = 0, t0 = 0, i0 = 0;
-    first_tap(n, p, t0, i0);
-    const double* hp = &phases[static_cast<std::size_t>(p * phase_len)];
-    double acc = 0.0;
-    for (long long t = t0, i = i0; p + t * up < taps && i < n_in; ++t, ++i)
-      acc += hp[t] * x[static_cast<std::size_t>(i)];
-    return static_cast<float>(acc);
-  }
-
-  // Whether every tap of outputs n .. n + 8 up - 1 lies inside x.
-  bool tile_inside(long long n) const {
-    long long p0 = 0, t0 = 0, x0 = 0, p1 = 0, t1 = 0, i1 = 0;
-    first_tap(n, p0, t0, x0);
-    first_tap(n + kLanes * up - 1, p1, t1, i1);
-    return t0 == 0 && i1 + phase_len <= n_in;
-  }
-
-  // Outputs n + l * up (l = 0..7) share a phase and read x at i0 + l * down: a tile of 8 * up
-  // outputs whose taps all lie inside x is computed phase by phase, eight outputs at once, from a
-  // transposed copy of its stretch of x (xt[j][l] = x[x0 + l * down + j]), so the eight products
-  // of a tap are one vector operation. Each output still sums its products in ascending tap order,
-  // from 0.0, as one() does (a padding tap adds 0 * x, which leaves a nonzero sum as it is and can
-  // only turn a sum of -0 into +0).
-  void tile(long long n, std::vector<float>& y) {
-    long long pj = 0, tj = 0, ij = 0, x0 = 0;
-    first_tap(n + up - 1, pj, tj, ij);
-    const long long last = ij;
-    first_tap(n, pj, tj, x0);
-    const long long width = last - x0 + phase_len;  // the stretch each lane reads
+  // Outputs n .. n + 16 up - 1 (those below n_out) into y.
+  void tile(long long n, long long n_out, std::vector<float>& y) {
+    long long p = 0, x0 = 0, p_last = 0, x_last = 0;
+    first_tap(n + up - 1, p_last, x_last);
+    first_tap(n, p, x0);
+    const long long width = x_last - x0 + phase_len;  // the stretch each lane reads
     xt.resize(static_cast<std::size_t>(width * kLanes));
-    for (int l = 0; l < kLanes; ++l) {
-      const float* src = &x[static_cast<std::size_t>(x0 + l * down)];
-      for (long long j = 0; j < width; ++j) xt[static_cast<std::size_t>(j * kLanes + l)] = src[j];
+    if (x0 >= 0 && x0 + (kLanes - 1) * down + width <= n_in) {
+      // Inside x (all but the first and last tiles): row by row, each row one strided gather.
+      const float* src = &x[static_cast<std::size_t>(x0)];
+      for (long long j = 0; j < width; ++j) {
+        double* row = &xt[static_cast<std::size_t>(j * kLanes)];
+        for (int l = 0; l < kLanes; ++l) row[l] = static_cast<double>(src[j + l * down]);
+      }
+    } else {
+      for (long long j = 0; j < width; ++j) {
+        for (int l = 0; l < kLanes; ++l) {
+          const long long i = x0 + l * down + j;
+          xt[static_cast<std::size_t>(j * kLanes + l)] =
+              (i >= 0 && i < n_in) ? static_cast<double>(x[static_cast<std::size_t>(i)]) : 0.0;
+        }
+      }
     }
     // Output n + j's phase and first x index, stepped from output n's (one output further moves
     // the filter by `down` input-rate samples) instead of divided out for each.
     const long long step_phase = down % up, step_x = down / up;
-    ij = x0;
-    for (long long j = 0; j < up; ++j) {
-      if (j > 0) {
-        pj -= step_phase;
-        ij += step_x;
-        if (pj < 0) {
-          pj += up;
-          ++ij;
+    const auto step = [&](long long& pj, long long& ij) {
+      pj -= step_phase;
+      ij += step_x;
+      if (pj < 0) {
+        pj += up;
+        ++ij;
+      }
+    };
+    // Output n + j + l * up goes to yt[j][l] (sixteen floats per phase, one vector store), and the
+    // tile is transposed into y at the end, where lane l's outputs are contiguous.
+    yt.resize(static_cast<std::size_t>(up * kLanes));
+    const auto store = [&](long long j, const Lanes& lo, const Lanes& hi) {
+      const LanesF flo = __builtin_convertvector(lo, LanesF), fhi = __builtin_convertvector(hi, LanesF);
+      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes)], &flo, sizeof flo);
+      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + 8)], &fhi, sizeof fhi);
+    };
+    long long pa = p, ia = x0;
+    for (long long j = 0; j < up; j += 2) {
+      if (j > 0) step(pa, ia);
+      long long pb = pa, ib = ia;
+      const bool two = j + 1 < up;
+      if (two) step(pb, ib);
+      const double* ha = &phases[static_cast<std::size_t>(pa * phase_len)];
+      const double* hb = &phases[static_cast<std::size_t>((two ? pb : pa) * phase_len)];
+      const double* xa = &xt[static_cast<std::size_t>((ia - x0) * kLanes)];
+      const double* xb = &xt[static_cast<std::size_t>(((two ? ib : ia) - x0) * kLanes)];
+      // Phase p has (taps - p + up - 1) / up real taps (the longest phase_len): the padding taps
+      // after them are left out.
+      const long long len = (taps - std::min(pa, two ? pb : pa) + up - 1) / up;
+      Lanes a0 = {}, a1 = {}, b0 = {}, b1 = {};
+      for (long long t = 0; t < len; ++t) {
+        Lanes va0, va1, vb0, vb1;
+        std::memcpy(&va0, xa + t * kLanes, sizeof va0);
+        std::memcpy(&va1, xa + t * kLanes + 8, sizeof va1);
+        std::memcpy(&vb0, xb + t * kLanes, sizeof vb0);
+        std::memcpy(&vb1, xb + t * kLanes + 8, sizeof vb1);
+        a0 += ha[t] * va0;
+        a1 += ha[t] * va1;
+        b0 += hb[t] * vb0;
+        b1 += hb[t] * vb1;
+      }
+      store(j, a0, a1);
+      if (two) store(j + 1, b0, b1);
+      pa = two ? pb : pa;
+      ia = two ? ib : ia;
+    }
+    if (n + kLanes * up <= n_out) {
+      // Blocks of 8 phases x 8 lanes transposed in registers, the rest one by one.
+      float* dst = &y[static_cast<std::size_t>(n)];
+      long long j0 = 0;
+      for (; j0 + lanes::kWidth <= up; j0 += lanes::kWidth) {
+        for (int half = 0; half < kLanes; half += lanes::kWidth) {
+          LanesF block[lanes::kWidth];
+          for (int i = 0; i < lanes::kWidth; ++i)
+            std::memcpy(&block[i], &yt[static_cast<std::size_t>((j0 + i) * kLanes + half)], sizeof block[i]);
+          lanes::transpose8(block);
+          for (int i = 0; i < lanes::kWidth; ++i) std::memcpy(dst + (half + i) * up + j0, &block[i], sizeof block[i]);
         }
       }
-      const double* hp = &phases[static_cast<std::size_t>(pj * phase_len)];
-      const float* xp = &xt[static_cast<std::size_t>((ij - x0) * kLanes)];
-      Lanes acc = {};
-      for (long long t = 0; t < phase_len; ++t) {
-        LanesF xf;
-        std::memcpy(&xf, xp + t * kLanes, sizeof xf);
-        acc += hp[t] * __builtin_convertvector(xf, Lanes);
-      }
-      for (int l = 0; l < kLanes; ++l) y[static_cast<std::size_t>(n + j + l * up)] = static_cast<float>(acc[l]);
+      for (int l = 0; l < kLanes; ++l)
+        for (long long j = j0; j < up; ++j) dst[l * up + j] = yt[static_cast<std::size_t>(j * kLanes + l)];
+    } else {
+      for (int l = 0; l < kLanes; ++l)
+        for (long long j = 0; j < up && n + l * up + j < n_out; ++j)
+          y[static_cast<std::size_t>(n + l * up + j)] = yt[static_cast<std::size_t>(j * kLanes + l)];
     }
   }
 };
@@ -204,17 +242,7 @@ std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int
   const std::shared_ptr<const std::vector<double>> filter = polyphase_filter(up, down);
   Polyphase r{x, *filter, up, down};
   std::vector<float> y(static_cast<std::size_t>(n_out));
-  const long long tile = Polyphase::kLanes * up;
-  long long n = 0;
-  while (n < n_out) {
-    if (n + tile <= n_out && r.tile_inside(n)) {
-      r.tile(n, y);
-      n += tile;
-    } else {
-      y[static_cast<std::size_t>(n)] = r.one(n);
-      ++n;
-    }
-  }
+  for (long long n = 0; n < n_out; n += Polyphase::kLanes * up) r.tile(n, n_out, y);
   return y;
 }
 
