@@ -5,6 +5,7 @@
 #include "engine/assemble/blend.h"
 #include "engine/assemble/inertialize.h"
 #include "engine/assemble/resample.h"
+#include "engine/assemble/timeline.h"
 #include "engine/core/error.h"
 
 namespace gmg {
@@ -18,47 +19,26 @@ using Values = std::vector<glm::dvec3>;
 class ChannelReader {
  public:
   ChannelReader(const std::vector<double>& values, int dims, const std::vector<char>& continues)
-      : values_(values), dims_(dims), groups_((dims + 2) / 3), continues_(continues) {
-    const int frames = static_cast<int>(continues.size());
-    first_.resize(continues.size());
-    for (int f = 0; f < frames; ++f)
-      first_[static_cast<std::size_t>(f)] =
-          f > 0 && continues[static_cast<std::size_t>(f - 1)] ? first_[static_cast<std::size_t>(f - 1)] : f;
-  }
+      : values_(values), dims_(dims), groups_((dims + 2) / 3), runs_(continues) {}
 
   int groups() const { return groups_; }
 
-  bool readable(double t, int from) const {
-    if (t < 0.0) return false;
-    const int f = static_cast<int>(std::floor(t));
-    const int frames = static_cast<int>(continues_.size());
-    if (f >= frames || first_[static_cast<std::size_t>(f)] != first_[static_cast<std::size_t>(from)]) return false;
-    return t == f || (f + 1 < frames && continues_[static_cast<std::size_t>(f)]);
-  }
+  bool readable(double t, int from) const { return runs_.readable(t, from); }
 
   void sample(double t, Values& out) const {
     const int f = static_cast<int>(std::floor(t));
     const double a = t - f;
-    const int g =
-        a > 0.0 && f + 1 < static_cast<int>(continues_.size()) && continues_[static_cast<std::size_t>(f)] ? f + 1 : f;
+    const int g = runs_.next_frame(f, a);
     out.resize(static_cast<std::size_t>(groups_));
     for (int k = 0; k < groups_; ++k) out[static_cast<std::size_t>(k)] = (1.0 - a) * at(f, k) + a * at(g, k);
   }
 
   void velocity(double t, double rate, const Values& at_t, Values& out) const {
     out.assign(static_cast<std::size_t>(groups_), glm::dvec3(0.0));
-    if (rate <= 0.0) return;
-    const int f = static_cast<int>(std::floor(t));
+    double partner = 0.0, sign = 1.0;
+    if (!runs_.velocity_partner(t, rate, partner, sign)) return;
     Values other;
-    double sign = 1.0;
-    if (readable(t - rate, f)) {
-      sample(t - rate, other);
-    } else if (readable(t + rate, f)) {
-      sample(t + rate, other);
-      sign = -1.0;
-    } else {
-      return;
-    }
+    sample(partner, other);
     for (std::size_t k = 0; k < out.size(); ++k) out[k] = sign * (at_t[k] - other[k]);
   }
 
@@ -72,8 +52,7 @@ class ChannelReader {
 
   const std::vector<double>& values_;
   int dims_, groups_;
-  const std::vector<char>& continues_;
-  std::vector<int> first_;
+  CaptureRuns runs_;
 };
 
 void check_values(const std::vector<double>& values, int dims, std::size_t frames) {

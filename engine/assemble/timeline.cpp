@@ -114,4 +114,33 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
   return out;
 }
 
+CaptureRuns::CaptureRuns(const std::vector<char>& continues) : continues_(continues), first_(continues.size()) {
+  for (std::size_t f = 0; f < continues.size(); ++f)
+    first_[f] = f > 0 && continues[f - 1] ? first_[f - 1] : static_cast<int>(f);
+}
+
+bool CaptureRuns::readable(double t, int from) const {
+  if (t < 0.0) return false;
+  const int f = static_cast<int>(std::floor(t));
+  const int frames = static_cast<int>(continues_.size());
+  if (f >= frames || first_[static_cast<std::size_t>(f)] != first_[static_cast<std::size_t>(from)]) return false;
+  return t == f || (f + 1 < frames && continues_[static_cast<std::size_t>(f)]);
+}
+
+bool CaptureRuns::velocity_partner(double t, double rate, double& out_time, double& out_sign) const {
+  if (rate <= 0.0) return false;
+  const int f = static_cast<int>(std::floor(t));
+  if (readable(t - rate, f)) {
+    out_time = t - rate;
+    out_sign = 1.0;
+    return true;
+  }
+  if (readable(t + rate, f)) {
+    out_time = t + rate;
+    out_sign = -1.0;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace gmg

@@ -5,6 +5,7 @@
 
 #include "engine/assemble/foot_lock.h"
 #include "engine/assemble/inertialize.h"
+#include "engine/assemble/timeline.h"
 #include "engine/core/error.h"
 #include "engine/motion/rotation.h"
 
@@ -24,30 +25,19 @@ struct Velocity {
   std::vector<glm::dvec3> lin;
 };
 
-// Reads the source at fractional times. first_[f] is the first frame of the continuous capture
-// run holding f, so a velocity never differences across a break.
+// Reads the source at fractional times inside its capture runs, so a velocity never differences
+// across a break.
 class SourceReader {
  public:
-  SourceReader(const Motion& m, const std::vector<char>& continues) : m_(m), continues_(continues) {
-    first_.resize(static_cast<std::size_t>(m.frame_count));
-    for (int f = 0; f < m.frame_count; ++f)
-      first_[static_cast<std::size_t>(f)] =
-          f > 0 && continues[static_cast<std::size_t>(f - 1)] ? first_[static_cast<std::size_t>(f - 1)] : f;
-  }
+  SourceReader(const Motion& m, const std::vector<char>& continues) : m_(m), runs_(continues) {}
 
   // Whether time t can be read in the same capture run as frame `from`.
-  bool readable(double t, int from) const {
-    if (t < 0.0) return false;
-    const int f = static_cast<int>(std::floor(t));
-    if (f >= m_.frame_count || first_[static_cast<std::size_t>(f)] != first_[static_cast<std::size_t>(from)])
-      return false;
-    return t == f || (f + 1 < m_.frame_count && continues_[static_cast<std::size_t>(f)]);
-  }
+  bool readable(double t, int from) const { return runs_.readable(t, from); }
 
   void sample(double t, Pose& out) const {
     const int f = static_cast<int>(std::floor(t));
     const double a = t - f;
-    const int g = a > 0.0 && f + 1 < m_.frame_count && continues_[static_cast<std::size_t>(f)] ? f + 1 : f;
+    const int g = runs_.next_frame(f, a);
     const int joints = m_.joint_count();
     out.rot.resize(static_cast<std::size_t>(joints));
     out.tr.resize(static_cast<std::size_t>(joints));
@@ -64,18 +54,10 @@ class SourceReader {
     const int joints = m_.joint_count();
     out.ang.assign(static_cast<std::size_t>(joints), glm::dvec3(0.0));
     out.lin.assign(static_cast<std::size_t>(joints), glm::dvec3(0.0));
-    if (rate <= 0.0) return;
-    const int f = static_cast<int>(std::floor(t));
+    double partner = 0.0, sign = 1.0;
+    if (!runs_.velocity_partner(t, rate, partner, sign)) return;
     Pose other;
-    double sign = 1.0;
-    if (readable(t - rate, f)) {
-      sample(t - rate, other);
-    } else if (readable(t + rate, f)) {
-      sample(t + rate, other);
-      sign = -1.0;
-    } else {
-      return;
-    }
+    sample(partner, other);
     for (int j = 0; j < joints; ++j) {
       const std::size_t k = static_cast<std::size_t>(j);
       out.ang[k] = sign * quat_to_expmap(at.rot[k] * glm::conjugate(other.rot[k]));
@@ -85,8 +67,7 @@ class SourceReader {
 
  private:
   const Motion& m_;
-  const std::vector<char>& continues_;
-  std::vector<int> first_;
+  CaptureRuns runs_;
 };
 
 // The decaying offsets of every joint, and the root's horizontal anchor.

@@ -66,3 +66,33 @@ TEST(Timeline, ATransitionStartsANewRunAndIsNotSmoothedAcross) {
 
 }  // namespace
 }  // namespace gmg
+
+namespace gmg {
+namespace {
+
+// Frames 0-2 are one capture run, a break after 2, frames 3-4 another (continues = 1 1 0 1 0).
+TEST(CaptureRuns, ReadAndDifferenceOnlyInsideARun) {
+  const std::vector<char> continues = {1, 1, 0, 1, 0};
+  const CaptureRuns runs(continues);
+  EXPECT_TRUE(runs.readable(1.5, 0));
+  EXPECT_TRUE(runs.readable(2.0, 0)) << "a whole frame at the run's end";
+  EXPECT_FALSE(runs.readable(2.5, 2)) << "between 2 and 3 lies the break";
+  EXPECT_FALSE(runs.readable(3.0, 2)) << "another run";
+  EXPECT_FALSE(runs.readable(-0.5, 0));
+  EXPECT_FALSE(runs.readable(5.0, 4)) << "past the last frame";
+  EXPECT_EQ(runs.next_frame(1, 0.5), 2);
+  EXPECT_EQ(runs.next_frame(2, 0.5), 2) << "no frame to interpolate towards across the break";
+  EXPECT_EQ(runs.next_frame(1, 0.0), 1);
+  double partner = 0.0, sign = 0.0;
+  ASSERT_TRUE(runs.velocity_partner(1.5, 1.0, partner, sign));
+  EXPECT_EQ(partner, 0.5);
+  EXPECT_EQ(sign, 1.0);
+  ASSERT_TRUE(runs.velocity_partner(3.0, 1.0, partner, sign)) << "a run's first frame looks forward";
+  EXPECT_EQ(partner, 4.0);
+  EXPECT_EQ(sign, -1.0);
+  EXPECT_FALSE(runs.velocity_partner(1.0, 0.0, partner, sign)) << "a held frame has no velocity";
+  EXPECT_FALSE(runs.velocity_partner(0.0, 3.0, partner, sign)) << "a run too short for the rate";
+}
+
+}  // namespace
+}  // namespace gmg
