@@ -59,12 +59,11 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
   std::vector<Transition> edges;
   if (n < 2) return edges;
   const std::vector<double> theta = continuity_thresholds(f, run_end, params);
-  GraphParams bounded = params;
-  bounded.max_transitions = graph_transition_bound(params, n);
   const std::unique_ptr<CandidateFinder> finder =
-      make_candidate_finder(f, theta, bounded, neighbour_search_for(params, n), candidate_search_workers());
+      make_candidate_finder(f, theta, params, neighbour_search_for(params, n), candidate_search_workers());
   const int step = finder->block_size();
-  if (bounded.max_transitions > 0) edges.reserve(static_cast<std::size_t>(n) * 4);
+  if (params.max_transitions > 0)
+    edges.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(std::min(params.max_transitions, 8)));
 
   EdgeIndex index(n);
   using Lists = std::vector<std::vector<int>>;
@@ -82,7 +81,7 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       const int l = block + static_cast<int>(i);
       const std::size_t first = edges.size();
-      transitions_of(l, candidates[i], f, bounded, index, edges);
+      transitions_of(l, candidates[i], f, params, index, edges);
       // Pruning 2 looks only at earlier left frames: this frame's edges join the index after
       // all of its candidates were tested.
       for (std::size_t e = first; e < edges.size(); ++e) index.add(l, edges[e].to);  // ascending

@@ -22,8 +22,8 @@ using ContinuityProgress = std::function<void(int, int)>;
 
 // The whole analysis over frames with the given run structure: each frame's candidates K_l
 // (graph/neighbours.h: the nearest under its threshold, found by params.neighbours), pruning 1
-// and pruning 2 (see graph/pruning.h) in left-frame order, then at most
-// graph_transition_bound(params, frames) (graph/neighbours.h) of the survivors, the nearest (by weight, then target).
+// and pruning 2 (see graph/pruning.h) in left-frame order, then at most params.max_transitions
+// of the survivors, the nearest (by weight, then target): the same rule at every length.
 // Returns the unnatural edges ordered by (from, to), weighted by d(l, r). With max_transitions 0 this is the paper's
 // analysis: every candidate under the threshold, both prunings. Never holds an N x N matrix.
 std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::vector<int>& run_end,

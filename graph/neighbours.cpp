@@ -20,11 +20,6 @@ NeighbourSearch neighbour_search_for(const GraphParams& params, int frames) {
   return frames <= params.exact_frames ? NeighbourSearch::Exact : NeighbourSearch::Approximate;
 }
 
-int graph_transition_bound(const GraphParams& params, int frames) {
-  const bool small = params.neighbours == NeighbourSearch::Auto && frames <= params.exact_frames;
-  return small ? 0 : params.max_transitions;
-}
-
 int candidate_search_workers() { return std::min(kMaxCandidateWorkers, worker_count(0)); }
 
 int candidate_limit(const GraphParams& params) {

@@ -33,10 +33,6 @@ NeighbourSearch neighbour_search_for(const GraphParams& params, int frames);
 // K_l's size bound (see above); 0 = unbounded.
 int candidate_limit(const GraphParams& params);
 
-// The max_transitions a graph of `frames` frames is analysed with: 0 (unbounded, the paper's
-// analysis) when neighbours is Auto and frames <= exact_frames, else params.max_transitions.
-int graph_transition_bound(const GraphParams& params, int frames);
-
 // Finds K_l for consecutive blocks of frames, in order: next(first, count) with first = 0, then
 // the previous first + count, and so on. Blocks are computed by `workers` threads.
 class CandidateFinder {

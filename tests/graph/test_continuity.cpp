@@ -27,6 +27,7 @@ TEST(Continuity, HandWorkedSawtooth) {
   GraphParams p;
   p.l_cn = 1;
   p.l_pn = 1;
+  p.max_transitions = 0;  // the paper's analysis, every survivor (the bound is worked below)
   const std::vector<Transition> edges = continuity_analysis(f, one_run(10), p);
   ASSERT_FALSE(edges.empty());
   EXPECT_EQ(edges[0].from, 0);
@@ -48,6 +49,13 @@ TEST(Continuity, HandWorkedSawtooth) {
   for (const Transition& t : edges)
     if (t.from == 4) from4.push_back(t.to);
   EXPECT_EQ(from4, (std::vector<int>{0, 1, 2, 6, 7, 8, 9}));
+  // The default bound, 4 transitions: the nearest four of those by (weight, target) are 9 (d 0),
+  // 8 (1), 2 (2) and 7 (2); 6 and 1 (3) and 0 (4) go.
+  p.max_transitions = 4;
+  std::vector<int> bounded4;
+  for (const Transition& t : continuity_analysis(f, one_run(10), p))
+    if (t.from == 4) bounded4.push_back(t.to);
+  EXPECT_EQ(bounded4, (std::vector<int>{2, 7, 8, 9}));
 }
 
 TEST(Continuity, HandWorkedPruningSteps) {

@@ -101,8 +101,9 @@ TEST(Neighbours, BothSearchesFindTheCandidatesByDefinition) {
   const PoseFeatures f = looping_motion(500, 11);
   GraphParams p;
   p.l_pn = 2;
-  p.max_transitions = 3;  // k = 12: binds on most frames of a random walk
-  p.ann_checks = 0;       // the tree searched to the end is exact
+  p.max_transitions = 3;
+  p.candidates_per_transition = 4;  // k = 12: binds on most frames of a random walk
+  p.ann_checks = 0;                 // the tree searched to the end is exact
   const std::vector<double> theta = continuity_thresholds(f, one_run(500), p);
   const auto expected = brute_candidates(f, theta, p);
   std::size_t bound = 0;
@@ -121,7 +122,6 @@ TEST(Neighbours, NoFrameHasMoreThanMaxTransitionsAndTheyAreTheNearest) {
   GraphParams p;
   p.l_pn = 1;
   p.max_transitions = 2;
-  p.neighbours = NeighbourSearch::Exact;  // Auto would give this small graph the unbounded analysis
   const std::vector<Transition> edges = continuity_analysis(f, one_run(400), p);
   std::vector<int> out_degree(400, 0);
   for (const Transition& t : edges) ++out_degree[static_cast<std::size_t>(t.from)];
@@ -185,30 +185,26 @@ TEST(Neighbours, AutoSearchesExactlyUpToExactFrames) {
   EXPECT_EQ(candidate_limit(p), 0);
 }
 
-TEST(Neighbours, AutoBoundsTransitionsAboveExactFramesOnly) {
-  GraphParams p;
-  p.exact_frames = 100;
-  p.max_transitions = 7;
-  EXPECT_EQ(graph_transition_bound(p, 100), 0);  // the paper's analysis
-  EXPECT_EQ(graph_transition_bound(p, 101), 7);
-  p.neighbours = NeighbourSearch::Exact;  // an explicit search always takes the bound
-  EXPECT_EQ(graph_transition_bound(p, 100), 7);
-  p.neighbours = NeighbourSearch::Approximate;
-  EXPECT_EQ(graph_transition_bound(p, 10), 7);
-}
-
-// With Auto below exact_frames the edges are the unbounded analysis's, whatever max_transitions.
-TEST(Neighbours, SmallGraphsGetTheUnboundedAnalysisUnderAuto) {
+// One rule at every length: the bound applies below exact_frames as above it, and the two
+// searches Auto switches between give the same edges, so a reference just under exact_frames
+// and one just over get the same analysis.
+TEST(Neighbours, TheSameBoundedEdgesOnBothSidesOfExactFrames) {
   const PoseFeatures f = looping_motion(400, 5);
-  GraphParams unbounded;
-  unbounded.l_pn = 1;
+  GraphParams p;
+  p.l_pn = 1;
+  p.max_transitions = 2;
+  p.ann_checks = 0;
+  const auto expected = as_tuples(brute_analysis(f, one_run(400), p));
+  std::vector<int> out_degree(400, 0);
+  for (const auto& [from, to, w] : expected) ++out_degree[static_cast<std::size_t>(from)];
+  ASSERT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "the bound must bind";
+  p.exact_frames = 400;  // Auto: the tiled exact search
+  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p)), expected);
+  p.exact_frames = 399;  // Auto: the tree
+  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p)), expected);
+  GraphParams unbounded = p;
   unbounded.max_transitions = 0;
-  GraphParams bounded = unbounded;
-  bounded.max_transitions = 1;
-  const auto all = as_tuples(continuity_analysis(f, one_run(400), unbounded));
-  EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), bounded)), all);
-  bounded.exact_frames = 399;  // now above: the bound applies and binds
-  EXPECT_LT(continuity_analysis(f, one_run(400), bounded).size(), all.size());
+  EXPECT_GT(continuity_analysis(f, one_run(400), unbounded).size(), expected.size());
 }
 
 // The approximate search with the default budget finds >= 95% of the exact candidate pairs.
