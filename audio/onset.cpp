@@ -179,12 +179,12 @@ std::vector<float> onset_strength_envelope(Audio&& audio) {
 
 namespace {
 
-// The spectrogram is computed eight frames at a time, one frame per lane (audio/lanes.h).
+// The spectrogram is computed kLanes frames at a time (as many as a register holds doubles: eight
+// with AVX-512, four with AVX, two with SSE2), one frame per lane (audio/lanes.h).
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
 using lanes::select;
-using lanes::transpose8;
 constexpr int kLanes = lanes::kWidth;
 
 // power_to_db (onset.h) lane by lane. glibc's log10 is a scalar call and was a fifth of the
@@ -291,20 +291,21 @@ struct RealFft {
   }
 };
 
-// One plan, a frame's buffers, and the power spectra of eight frames.
+// One plan, a frame's buffers, and the power spectra of kLanes frames.
 struct SpectrogramBlock {
   static constexpr int kBlocks = (kBins + kLanes - 1) / kLanes;
   const fftwf_plan plan = fft_plan();
   FftBuffers fft;
   RealFft split;
-  // rows[l * kRow + k]: frame l's bin k (the last block of eight padded with zeros).
+  // rows[l * kRow + k]: frame l's bin k (the last block of kLanes padded with zeros).
   static constexpr int kRow = kBlocks * kLanes;
   std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kLanes), 0.0);
-  // power[k]: bin k of the eight frames, so a band's weighted sum is one vector operation per bin
-  // for all eight, each frame's products still summed in ascending bin order.
-  std::vector<Lanes> power = std::vector<Lanes>(static_cast<std::size_t>(kBlocks * kLanes));
+  // power[k * kLanes + l]: bin k of frame l (a vector per bin), so a band's weighted sum is one
+  // vector operation per bin for all kLanes frames, each frame's products still summed in
+  // ascending bin order.
+  std::vector<double> power = std::vector<double>(static_cast<std::size_t>(kRow * kLanes));
 
-  // Frames t0 .. t0 + 7 (those before `frames`; silence after) into power.
+  // Frames t0 .. t0 + kLanes - 1 (those before `frames`; silence after) into power.
   void compute(const std::vector<float>& y, long long t0, long long frames) {
     for (int l = 0; l < kLanes; ++l) {
       double* row = &rows[static_cast<std::size_t>(l * kRow)];
@@ -316,13 +317,9 @@ struct SpectrogramBlock {
       fftwf_execute_dft(plan, reinterpret_cast<fftwf_complex*>(fft.in), fft.out);
       split.power(fft.out, row);
     }
-    for (int b = 0; b < kBlocks; ++b) {
-      Lanes block[kLanes];
-      for (int l = 0; l < kLanes; ++l)
-        std::memcpy(&block[l], &rows[static_cast<std::size_t>(l * kRow + b * kLanes)], sizeof block[l]);
-      transpose8(block);
-      for (int j = 0; j < kLanes; ++j) power[static_cast<std::size_t>(b * kLanes + j)] = block[j];
-    }
+    for (int b = 0; b < kBlocks; ++b)
+      lanes::transpose_block<Lanes>(&rows[static_cast<std::size_t>(b * kLanes)], kRow,
+                                    &power[static_cast<std::size_t>(b * kLanes * kLanes)], kLanes);
   }
 };
 
@@ -353,7 +350,7 @@ std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
   const long long frames = 1 + static_cast<long long>(y.size()) / kHop;
   const std::vector<MelBand>& bank = mel_bank();
   // dB, band-major (band m's frames are S[m * stride ...], the stride a whole number of blocks of
-  // eight frames), so the envelope sums over bands for many frames at once.
+  // kLanes frames), so the envelope sums over bands for many frames at once.
   const long long stride = (frames + kLanes - 1) / kLanes * kLanes;
   std::vector<double> S(static_cast<std::size_t>(stride * kMels));
   SpectrogramBlock block;
@@ -366,7 +363,7 @@ std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
       const MelBand& band = bank[static_cast<std::size_t>(m)];
       Lanes acc = {};
       for (std::size_t k = 0; k < band.w.size(); ++k)
-        acc += band.w[k] * block.power[static_cast<std::size_t>(band.first) + k];
+        acc += band.w[k] * lanes::load(&block.power[(static_cast<std::size_t>(band.first) + k) * kLanes]);
       const Lanes db = power_to_db_lanes(acc);
       std::memcpy(&S[static_cast<std::size_t>(m * stride + t0)], &db, sizeof db);
       max_db = select(max_db < db, db, max_db);
