@@ -179,13 +179,17 @@ std::vector<float> onset_strength_envelope(Audio&& audio) {
 
 namespace {
 
-// The spectrogram is computed kLanes frames at a time (as many as a register holds doubles: eight
-// with AVX-512, four with AVX, two with SSE2), one frame per lane (audio/lanes.h).
+// The spectrogram is computed kFrames frames at a time, one frame per lane of kVectors vectors
+// (audio/lanes.h): eight frames in one vector with AVX-512, in two with AVX, four in two with
+// SSE2. Two vectors give each band's sum, and the logarithm's series, two independent chains
+// where one would wait on its own latency.
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
 using lanes::select;
 constexpr int kLanes = lanes::kWidth;
+constexpr int kVectors = kLanes >= 8 ? 1 : 2;
+constexpr int kFrames = kVectors * kLanes;
 
 // power_to_db (onset.h) lane by lane. glibc's log10 is a scalar call and was a fifth of the
 // analysis; this is its argument reduction and a series, vectorised: x = 2^e m with m in
@@ -291,7 +295,7 @@ struct RealFft {
   }
 };
 
-// One plan, a frame's buffers, and the power spectra of kLanes frames.
+// One plan, a frame's buffers, and the power spectra of kFrames frames.
 struct SpectrogramBlock {
   static constexpr int kBlocks = (kBins + kLanes - 1) / kLanes;
   const fftwf_plan plan = fft_plan();
@@ -299,15 +303,15 @@ struct SpectrogramBlock {
   RealFft split;
   // rows[l * kRow + k]: frame l's bin k (the last block of kLanes padded with zeros).
   static constexpr int kRow = kBlocks * kLanes;
-  std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kLanes), 0.0);
-  // power[k * kLanes + l]: bin k of frame l (a vector per bin), so a band's weighted sum is one
-  // vector operation per bin for all kLanes frames, each frame's products still summed in
-  // ascending bin order.
-  std::vector<double> power = std::vector<double>(static_cast<std::size_t>(kRow * kLanes));
+  std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kFrames), 0.0);
+  // power[k * kFrames + l]: bin k of frame l (kVectors vectors per bin), so a band's weighted sum
+  // is kVectors vector operations per bin for all kFrames frames, each frame's products still
+  // summed in ascending bin order.
+  std::vector<double> power = std::vector<double>(static_cast<std::size_t>(kRow * kFrames));
 
-  // Frames t0 .. t0 + kLanes - 1 (those before `frames`; silence after) into power.
+  // Frames t0 .. t0 + kFrames - 1 (those before `frames`; silence after) into power.
   void compute(const std::vector<float>& y, long long t0, long long frames) {
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < kFrames; ++l) {
       double* row = &rows[static_cast<std::size_t>(l * kRow)];
       if (t0 + l >= frames) {
         std::fill(row, row + kRow, 0.0);
@@ -318,8 +322,9 @@ struct SpectrogramBlock {
       split.power(fft.out, row);
     }
     for (int b = 0; b < kBlocks; ++b)
-      lanes::transpose_block<Lanes>(&rows[static_cast<std::size_t>(b * kLanes)], kRow,
-                                    &power[static_cast<std::size_t>(b * kLanes * kLanes)], kLanes);
+      for (int v = 0; v < kVectors; ++v)
+        lanes::transpose_block<Lanes>(&rows[static_cast<std::size_t>(v * kLanes * kRow + b * kLanes)], kRow,
+                                      &power[static_cast<std::size_t>(b * kLanes * kFrames + v * kLanes)], kFrames);
   }
 };
 
@@ -350,23 +355,26 @@ std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
   const long long frames = 1 + static_cast<long long>(y.size()) / kHop;
   const std::vector<MelBand>& bank = mel_bank();
   // dB, band-major (band m's frames are S[m * stride ...], the stride a whole number of blocks of
-  // kLanes frames), so the envelope sums over bands for many frames at once.
-  const long long stride = (frames + kLanes - 1) / kLanes * kLanes;
+  // kFrames frames), so the envelope sums over bands for many frames at once.
+  const long long stride = (frames + kFrames - 1) / kFrames * kFrames;
   std::vector<double> S(static_cast<std::size_t>(stride * kMels));
   SpectrogramBlock block;
   // Lanes past the last frame see silence (-100 dB, no more than any real frame's value): they
   // leave the maximum as it is.
   Lanes max_db = Lanes{} - HUGE_VAL;
-  for (long long t0 = 0; t0 < frames; t0 += kLanes) {
+  for (long long t0 = 0; t0 < frames; t0 += kFrames) {
     block.compute(y, t0, frames);
     for (int m = 0; m < kMels; ++m) {
       const MelBand& band = bank[static_cast<std::size_t>(m)];
-      Lanes acc = {};
+      const double* power = &block.power[static_cast<std::size_t>(band.first) * kFrames];
+      Lanes acc[kVectors] = {};
       for (std::size_t k = 0; k < band.w.size(); ++k)
-        acc += band.w[k] * lanes::load(&block.power[(static_cast<std::size_t>(band.first) + k) * kLanes]);
-      const Lanes db = power_to_db_lanes(acc);
-      std::memcpy(&S[static_cast<std::size_t>(m * stride + t0)], &db, sizeof db);
-      max_db = select(max_db < db, db, max_db);
+        for (int v = 0; v < kVectors; ++v) acc[v] += band.w[k] * lanes::load(power + k * kFrames + v * kLanes);
+      for (int v = 0; v < kVectors; ++v) {
+        const Lanes db = power_to_db_lanes(acc[v]);
+        std::memcpy(&S[static_cast<std::size_t>(m * stride + t0 + v * kLanes)], &db, sizeof db);
+        max_db = select(max_db < db, db, max_db);
+      }
     }
   }
   // top_db = 80 below the maximum of the whole spectrogram.
