@@ -8,9 +8,9 @@
 // The width is the target's: 64 bytes (8 doubles) with AVX-512, 32 bytes (4) with AVX, 16 bytes
 // (2) otherwise (x86-64's baseline SSE2, or NEON). A vector wider than the registers is lowered
 // through memory (GCC spills its parts to the stack at every operation): with 64-byte vectors
-// everywhere the onset analysis took 108 ms on an AVX2 machine, more than twice the earlier scalar
-// code's time (docs/performance.md). The loops are written in terms of kWidth, and each lane is
-// an output of its own, so how many outputs share one vector changes no output's bits.
+// everywhere the onset analysis took about five times as long on an AVX2 machine as with 32-byte
+// ones (docs/performance.md). The loops are written in terms of kWidth, and each lane is an
+// output of its own, so how many outputs share one vector changes no output's bits.
 #pragma once
 
 #include <cstddef>
