@@ -1,18 +1,62 @@
-// Eight doubles (or floats) as one vector, for the resampler's and the spectrogram's loops.
+// Doubles (or floats) as one vector as wide as the target's registers, for the resampler's and the
+// spectrogram's loops.
 //
 // GCC and Clang vector extensions: lane-wise IEEE arithmetic, so each lane rounds exactly as the
 // scalar code would (the build turns contraction off), and the vectorised loops give the scalar
 // formulas' results bit for bit. Internal to audio/.
+//
+// The width is the target's: 64 bytes (8 doubles) with AVX-512, 32 bytes (4) with AVX, 16 bytes
+// (2) otherwise (x86-64's baseline SSE2, or NEON). A vector wider than the registers is lowered
+// through memory (GCC spills its parts to the stack at every operation): with 64-byte vectors
+// everywhere the onset analysis took about five times as long on an AVX2 machine as with 32-byte
+// ones (docs/performance.md). The loops are written in terms of kWidth, and each lane is an
+// output of its own, so how many outputs share one vector changes no output's bits.
 #pragma once
 
+#include <cstddef>
 #include <cstring>
+#include <utility>
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace gmg::audio::lanes {
 
-constexpr int kWidth = 8;
-using Lanes = double __attribute__((vector_size(64)));
-using LanesF = float __attribute__((vector_size(32)));
-using LaneBits = long long __attribute__((vector_size(64)));
+#if defined(__AVX512F__)
+constexpr int kBytes = 64;
+#elif defined(__AVX__)
+constexpr int kBytes = 32;
+#else
+constexpr int kBytes = 16;
+#endif
+constexpr int kWidth = kBytes / static_cast<int>(sizeof(double));
+using Lanes = double __attribute__((vector_size(kBytes)));
+using LaneBits = long long __attribute__((vector_size(kBytes)));
+// A Lanes converted to float (kWidth floats, half a register).
+using LanesF = float __attribute__((vector_size(kBytes / 2)));
+
+// The kWidth doubles at p (any alignment).
+inline Lanes load(const double* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// The kWidth floats at p (any alignment) in double (exact). With AVX and AVX-512 through the
+// conversion's intrinsic: GCC 12 lowers __builtin_convertvector from float to double there in
+// halves, through the stack.
+inline Lanes load_widened(const float* p) {
+#if defined(__AVX512F__)
+  return _mm512_cvtps_pd(_mm256_loadu_ps(p));
+#elif defined(__AVX__)
+  return _mm256_cvtps_pd(_mm_loadu_ps(p));
+#else
+  LanesF v;
+  std::memcpy(&v, p, sizeof v);
+  return __builtin_convertvector(v, Lanes);
+#endif
+}
 
 // mask ? a : b, lane by lane (mask lanes all ones or all zeros, as comparisons give).
 inline Lanes select(const LaneBits& mask, const Lanes& a, const Lanes& b) {
@@ -25,23 +69,66 @@ inline Lanes select(const LaneBits& mask, const Lanes& a, const Lanes& b) {
   return out;
 }
 
-// m[j][l] becomes m[l][j]: an 8 x 8 block transposed in registers (three rounds of two-vector
-// shuffles, pairing rows 1, 2 and then 4 apart).
-template <typename V>
-inline void transpose8(V (&m)[kWidth]) {
-  V b[kWidth], c[kWidth];
-  for (int i = 0; i < kWidth; i += 2) {
-    b[i] = __builtin_shufflevector(m[i], m[i + 1], 0, 8, 2, 10, 4, 12, 6, 14);
-    b[i + 1] = __builtin_shufflevector(m[i], m[i + 1], 1, 9, 3, 11, 5, 13, 7, 15);
-  }
-  for (int i : {0, 1, 4, 5}) {
-    c[i] = __builtin_shufflevector(b[i], b[i + 2], 0, 1, 8, 9, 4, 5, 12, 13);
-    c[i + 2] = __builtin_shufflevector(b[i], b[i + 2], 2, 3, 10, 11, 6, 7, 14, 15);
-  }
-  for (int i = 0; i < 4; ++i) {
-    m[i] = __builtin_shufflevector(c[i], c[i + 4], 0, 1, 2, 3, 8, 9, 10, 11);
-    m[i + 4] = __builtin_shufflevector(c[i], c[i + 4], 4, 5, 6, 7, 12, 13, 14, 15);
-  }
+namespace detail {
+
+// Rows a and b, S apart in the block, exchange their S-element sub-blocks: element k of a (k with
+// bit S set) trades places with element k - S of b.
+template <std::size_t S, typename V, std::size_t... K>
+inline void exchange(V& a, V& b, std::index_sequence<K...>) {
+  constexpr std::size_t n = sizeof...(K);
+  const V lo = __builtin_shufflevector(a, b, ((K & S) != 0 ? n + K - S : K)...);
+  const V hi = __builtin_shufflevector(a, b, ((K & S) != 0 ? n + K : K + S)...);
+  a = lo;
+  b = hi;
+}
+
+template <std::size_t S, std::size_t I, typename V, std::size_t N>
+inline void exchange_rows(V (&m)[N]) {
+  if constexpr ((I & S) == 0) exchange<S>(m[I], m[I + S], std::make_index_sequence<N>());
+}
+
+// Every statement spelled out (fold expressions rather than loops), so that the block is a set of
+// registers from the start: a loop the compiler left rolled would keep it in memory, stored in
+// pieces and loaded whole (a store-forwarding stall on every row).
+template <typename V, std::size_t N, std::size_t... I>
+inline void transpose_rows(V (&m)[N], std::index_sequence<I...>) {
+  static_assert(N >= 2 && N <= 16, "blocks of 2 x 2 to 16 x 16");
+  (exchange_rows<1, I>(m), ...);  // rows 1, 2, 4, 8 apart: log2 N rounds
+  if constexpr (N >= 4) (exchange_rows<2, I>(m), ...);
+  if constexpr (N >= 8) (exchange_rows<4, I>(m), ...);
+  if constexpr (N >= 16) (exchange_rows<8, I>(m), ...);
+}
+
+template <typename V, typename Load, typename Store, std::size_t... I>
+inline void transpose(Load& load, Store& store, std::index_sequence<I...> rows) {
+  V m[sizeof...(I)] = {load(static_cast<int>(I))...};
+  transpose_rows(m, rows);
+  (store(static_cast<int>(I), m[I]), ...);
+}
+
+}  // namespace detail
+
+// An N x N block, N the elements of V (2, 4, 8 or 16), transposed in registers (log2 N rounds of
+// two-vector shuffles, pairing rows 1, 2, 4, ... apart): load(j) gives row j of the block, and
+// store(l, v) is given row l of the transpose (v[j] = load(j)[l]), j, l = 0 .. N - 1.
+template <typename V, typename Load, typename Store>
+inline void transpose(Load&& load, Store&& store) {
+  constexpr std::size_t n = sizeof(V) / sizeof(load(0)[0]);
+  static_assert(n * sizeof(load(0)[0]) == sizeof(V) && (n & (n - 1)) == 0, "a square block of a power of two");
+  detail::transpose<V>(load, store, std::make_index_sequence<n>());
+}
+
+// The same from memory to memory: row j of the block at src + j * src_stride, row l of the
+// transpose to dst + l * dst_stride.
+template <typename V, typename T>
+inline void transpose_block(const T* src, std::ptrdiff_t src_stride, T* dst, std::ptrdiff_t dst_stride) {
+  transpose<V>(
+      [&](int j) {
+        V v;
+        std::memcpy(&v, src + j * src_stride, sizeof v);
+        return v;
+      },
+      [&](int l, const V& v) { std::memcpy(dst + l * dst_stride, &v, sizeof v); });
 }
 
 }  // namespace gmg::audio::lanes

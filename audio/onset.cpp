@@ -179,13 +179,17 @@ std::vector<float> onset_strength_envelope(Audio&& audio) {
 
 namespace {
 
-// The spectrogram is computed eight frames at a time, one frame per lane (audio/lanes.h).
+// The spectrogram is computed kFrames frames at a time, one frame per lane of kVectors vectors
+// (audio/lanes.h): eight frames in one vector with AVX-512, in two with AVX, four in two with
+// SSE2. Two vectors give each band's sum, and the logarithm's series, two independent chains
+// where one would wait on its own latency.
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
 using lanes::select;
-using lanes::transpose8;
 constexpr int kLanes = lanes::kWidth;
+constexpr int kVectors = kLanes >= 8 ? 1 : 2;
+constexpr int kFrames = kVectors * kLanes;
 
 // power_to_db (onset.h) lane by lane. glibc's log10 is a scalar call and was a fifth of the
 // analysis; this is its argument reduction and a series, vectorised: x = 2^e m with m in
@@ -291,22 +295,23 @@ struct RealFft {
   }
 };
 
-// One plan, a frame's buffers, and the power spectra of eight frames.
+// One plan, a frame's buffers, and the power spectra of kFrames frames.
 struct SpectrogramBlock {
   static constexpr int kBlocks = (kBins + kLanes - 1) / kLanes;
   const fftwf_plan plan = fft_plan();
   FftBuffers fft;
   RealFft split;
-  // rows[l * kRow + k]: frame l's bin k (the last block of eight padded with zeros).
+  // rows[l * kRow + k]: frame l's bin k (the last block of kLanes padded with zeros).
   static constexpr int kRow = kBlocks * kLanes;
-  std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kLanes), 0.0);
-  // power[k]: bin k of the eight frames, so a band's weighted sum is one vector operation per bin
-  // for all eight, each frame's products still summed in ascending bin order.
-  std::vector<Lanes> power = std::vector<Lanes>(static_cast<std::size_t>(kBlocks * kLanes));
+  std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kFrames), 0.0);
+  // power[k * kFrames + l]: bin k of frame l (kVectors vectors per bin), so a band's weighted sum
+  // is kVectors vector operations per bin for all kFrames frames, each frame's products still
+  // summed in ascending bin order.
+  std::vector<double> power = std::vector<double>(static_cast<std::size_t>(kRow * kFrames));
 
-  // Frames t0 .. t0 + 7 (those before `frames`; silence after) into power.
+  // Frames t0 .. t0 + kFrames - 1 (those before `frames`; silence after) into power.
   void compute(const std::vector<float>& y, long long t0, long long frames) {
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < kFrames; ++l) {
       double* row = &rows[static_cast<std::size_t>(l * kRow)];
       if (t0 + l >= frames) {
         std::fill(row, row + kRow, 0.0);
@@ -316,13 +321,10 @@ struct SpectrogramBlock {
       fftwf_execute_dft(plan, reinterpret_cast<fftwf_complex*>(fft.in), fft.out);
       split.power(fft.out, row);
     }
-    for (int b = 0; b < kBlocks; ++b) {
-      Lanes block[kLanes];
-      for (int l = 0; l < kLanes; ++l)
-        std::memcpy(&block[l], &rows[static_cast<std::size_t>(l * kRow + b * kLanes)], sizeof block[l]);
-      transpose8(block);
-      for (int j = 0; j < kLanes; ++j) power[static_cast<std::size_t>(b * kLanes + j)] = block[j];
-    }
+    for (int b = 0; b < kBlocks; ++b)
+      for (int v = 0; v < kVectors; ++v)
+        lanes::transpose_block<Lanes>(&rows[static_cast<std::size_t>(v * kLanes * kRow + b * kLanes)], kRow,
+                                      &power[static_cast<std::size_t>(b * kLanes * kFrames + v * kLanes)], kFrames);
   }
 };
 
@@ -353,23 +355,26 @@ std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
   const long long frames = 1 + static_cast<long long>(y.size()) / kHop;
   const std::vector<MelBand>& bank = mel_bank();
   // dB, band-major (band m's frames are S[m * stride ...], the stride a whole number of blocks of
-  // eight frames), so the envelope sums over bands for many frames at once.
-  const long long stride = (frames + kLanes - 1) / kLanes * kLanes;
+  // kFrames frames), so the envelope sums over bands for many frames at once.
+  const long long stride = (frames + kFrames - 1) / kFrames * kFrames;
   std::vector<double> S(static_cast<std::size_t>(stride * kMels));
   SpectrogramBlock block;
   // Lanes past the last frame see silence (-100 dB, no more than any real frame's value): they
   // leave the maximum as it is.
   Lanes max_db = Lanes{} - HUGE_VAL;
-  for (long long t0 = 0; t0 < frames; t0 += kLanes) {
+  for (long long t0 = 0; t0 < frames; t0 += kFrames) {
     block.compute(y, t0, frames);
     for (int m = 0; m < kMels; ++m) {
       const MelBand& band = bank[static_cast<std::size_t>(m)];
-      Lanes acc = {};
+      const double* power = &block.power[static_cast<std::size_t>(band.first) * kFrames];
+      Lanes acc[kVectors] = {};
       for (std::size_t k = 0; k < band.w.size(); ++k)
-        acc += band.w[k] * block.power[static_cast<std::size_t>(band.first) + k];
-      const Lanes db = power_to_db_lanes(acc);
-      std::memcpy(&S[static_cast<std::size_t>(m * stride + t0)], &db, sizeof db);
-      max_db = select(max_db < db, db, max_db);
+        for (int v = 0; v < kVectors; ++v) acc[v] += band.w[k] * lanes::load(power + k * kFrames + v * kLanes);
+      for (int v = 0; v < kVectors; ++v) {
+        const Lanes db = power_to_db_lanes(acc[v]);
+        std::memcpy(&S[static_cast<std::size_t>(m * stride + t0 + v * kLanes)], &db, sizeof db);
+        max_db = select(max_db < db, db, max_db);
+      }
     }
   }
   // top_db = 80 below the maximum of the whole spectrogram.

@@ -18,6 +18,11 @@ namespace {
 
 using lanes::Lanes;
 using lanes::LanesF;
+// A row of the tile's float outputs as the transpose into place reads it: a register of floats, at
+// most 32 bytes (blocks of 8 x 8 floats with AVX and AVX-512, 4 x 4 with SSE2).
+constexpr int kRowBytes = lanes::kBytes < 32 ? lanes::kBytes : 32;
+constexpr int kRowFloats = kRowBytes / static_cast<int>(sizeof(float));
+using RowF = float __attribute__((vector_size(kRowBytes)));
 
 // 192 kHz against a coprime target rate: the WAV reader's highest rate.
 constexpr long long kMaxReducedRate = 192000;
@@ -61,17 +66,23 @@ std::shared_ptr<const std::vector<double>> polyphase_filter(long long up, long l
 // The polyphase form of the resampler for one signal and filter (scipy's alignment, see
 // resample_poly): output n is sum_k h[k] * xu[n * down + k - half_len].
 //
-// Outputs n + l * up (l = 0..15) share a phase and read x at i0 + l * down: a tile of 16 * up
-// outputs is computed phase by phase, sixteen outputs at once (two vectors of eight doubles), from
-// a transposed copy of its stretch of x converted to double (xt[j][l] = x[x0 + l * down + j], zero
-// outside x), so the sixteen products of a tap are two vector operations. Two phases are summed
-// side by side: each sum is a chain of dependent additions, and four independent chains keep the
-// adder busy where one would wait on its own latency. Each output still sums its products in
-// ascending tap order, from 0.0, as the formula does: a tap outside x adds h * 0 = +-0, which
-// leaves a sum of +0 before the first real product as +0 and a nonzero sum as it is (it can only
-// turn a sum of -0 into +0, after the last one).
+// Outputs n + l * up (l = 0 .. kLanes - 1) share a phase and read x at i0 + l * down: a tile of
+// kLanes * up outputs is computed phase by phase, kLanes outputs at once (kVectors vectors of
+// lanes::kWidth doubles), from a transposed copy of its stretch of x converted to double
+// (xt[j][l] = x[x0 + l * down + j], zero outside x), so the kLanes products of a tap are kVectors
+// vector operations. Two phases are summed side by side: each sum is a chain of dependent
+// additions, and 2 kVectors (four with AVX-512, eight otherwise) independent chains keep the adder
+// busy where one would wait on its own latency. Each output still sums its products in ascending
+// tap order, from 0.0, as the formula does: a tap outside x adds h * 0 = +-0, which leaves a sum
+// of +0 before the first real product as +0 and a nonzero sum as it is (it can only turn a sum of
+// -0 into +0, after the last one). Which phases are paired depends on the output's index modulo
+// up only, not on kLanes, so neither does any output's sum.
 struct Polyphase {
-  static constexpr int kLanes = 16;
+  // Sixteen outputs per phase in two vectors with AVX-512 or four with AVX; eight in four with
+  // SSE2, whose sixteen registers could not hold the sixteen sums of sixteen outputs.
+  static constexpr int kLanes = lanes::kWidth >= 4 ? 16 : 8;
+  static constexpr int kVectors = kLanes / lanes::kWidth;
+  static_assert(kLanes % kRowFloats == 0, "a tile's lanes are whole blocks of the transpose");
   const std::vector<float>& x;
   const std::vector<double>& phases;  // polyphase_filter(up, down)
   long long up, down;
@@ -90,7 +101,7 @@ struct Polyphase {
     i0 = (base + p) / up;  // exact
   }
 
-  // Outputs n .. n + 16 up - 1 (those below n_out) into y.
+  // Outputs n .. n + kLanes * up - 1 (those below n_out) into y.
   void tile(long long n, long long n_out, std::vector<float>& y) {
     long long p = 0, x0 = 0, p_last = 0, x_last = 0;
     first_tap(n + up - 1, p_last, x_last);
@@ -98,9 +109,20 @@ struct Polyphase {
     const long long width = x_last - x0 + phase_len;  // the stretch each lane reads
     xt.resize(static_cast<std::size_t>(width * kLanes));
     if (x0 >= 0 && x0 + (kLanes - 1) * down + width <= n_in) {
-      // Inside x (all but the first and last tiles): row by row, each row one strided gather.
+      // Inside x (all but the first and last tiles): lane l reads the contiguous stretch
+      // x[x0 + l * down ...], so xt is the transpose of kLanes such rows, taken in blocks of
+      // kWidth x kWidth floats transposed in registers and converted to double, the last
+      // width % kWidth rows one by one.
       const float* src = &x[static_cast<std::size_t>(x0)];
-      for (long long j = 0; j < width; ++j) {
+      long long j0 = 0;
+      for (; j0 + lanes::kWidth <= width; j0 += lanes::kWidth) {
+        for (int l0 = 0; l0 < kLanes; l0 += lanes::kWidth) {
+          double* dst = &xt[static_cast<std::size_t>(j0 * kLanes + l0)];
+          lanes::transpose<Lanes>([&](int l) { return lanes::load_widened(src + (l0 + l) * down + j0); },
+                                  [&](int i, const Lanes& v) { std::memcpy(dst + i * kLanes, &v, sizeof v); });
+        }
+      }
+      for (long long j = j0; j < width; ++j) {
         double* row = &xt[static_cast<std::size_t>(j * kLanes)];
         for (int l = 0; l < kLanes; ++l) row[l] = static_cast<double>(src[j + l * down]);
       }
@@ -124,13 +146,14 @@ struct Polyphase {
         ++ij;
       }
     };
-    // Output n + j + l * up goes to yt[j][l] (sixteen floats per phase, one vector store), and the
-    // tile is transposed into y at the end, where lane l's outputs are contiguous.
+    // Output n + j + l * up goes to yt[j][l] (kLanes floats per phase, kVectors vector stores),
+    // and the tile is transposed into y at the end, where lane l's outputs are contiguous.
     yt.resize(static_cast<std::size_t>(up * kLanes));
-    const auto store = [&](long long j, const Lanes& lo, const Lanes& hi) {
-      const LanesF flo = __builtin_convertvector(lo, LanesF), fhi = __builtin_convertvector(hi, LanesF);
-      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes)], &flo, sizeof flo);
-      std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + 8)], &fhi, sizeof fhi);
+    const auto store = [&](long long j, const Lanes(&acc)[kVectors]) {
+      for (int v = 0; v < kVectors; ++v) {
+        const LanesF f = __builtin_convertvector(acc[v], LanesF);
+        std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + v * lanes::kWidth)], &f, sizeof f);
+      }
     };
     long long pa = p, ia = x0;
     for (long long j = 0; j < up; j += 2) {
@@ -145,34 +168,28 @@ struct Polyphase {
       // Phase p has (taps - p + up - 1) / up real taps (the longest phase_len): the padding taps
       // after them are left out.
       const long long len = (taps - std::min(pa, two ? pb : pa) + up - 1) / up;
-      Lanes a0 = {}, a1 = {}, b0 = {}, b1 = {};
+      Lanes a[kVectors] = {}, b[kVectors] = {};
       for (long long t = 0; t < len; ++t) {
-        Lanes va0, va1, vb0, vb1;
-        std::memcpy(&va0, xa + t * kLanes, sizeof va0);
-        std::memcpy(&va1, xa + t * kLanes + 8, sizeof va1);
-        std::memcpy(&vb0, xb + t * kLanes, sizeof vb0);
-        std::memcpy(&vb1, xb + t * kLanes + 8, sizeof vb1);
-        a0 += ha[t] * va0;
-        a1 += ha[t] * va1;
-        b0 += hb[t] * vb0;
-        b1 += hb[t] * vb1;
+        for (int v = 0; v < kVectors; ++v) {
+          Lanes va, vb;
+          std::memcpy(&va, xa + t * kLanes + v * lanes::kWidth, sizeof va);
+          std::memcpy(&vb, xb + t * kLanes + v * lanes::kWidth, sizeof vb);
+          a[v] += ha[t] * va;
+          b[v] += hb[t] * vb;
+        }
       }
-      store(j, a0, a1);
-      if (two) store(j + 1, b0, b1);
+      store(j, a);
+      if (two) store(j + 1, b);
       pa = two ? pb : pa;
       ia = two ? ib : ia;
     }
     if (n + kLanes * up <= n_out) {
-      // Blocks of 8 phases x 8 lanes transposed in registers, the rest one by one.
+      // Blocks of kRowFloats phases x kRowFloats lanes transposed in registers, the rest one by one.
       float* dst = &y[static_cast<std::size_t>(n)];
       long long j0 = 0;
-      for (; j0 + lanes::kWidth <= up; j0 += lanes::kWidth) {
-        for (int half = 0; half < kLanes; half += lanes::kWidth) {
-          LanesF block[lanes::kWidth];
-          for (int i = 0; i < lanes::kWidth; ++i)
-            std::memcpy(&block[i], &yt[static_cast<std::size_t>((j0 + i) * kLanes + half)], sizeof block[i]);
-          lanes::transpose8(block);
-          for (int i = 0; i < lanes::kWidth; ++i) std::memcpy(dst + (half + i) * up + j0, &block[i], sizeof block[i]);
+      for (; j0 + kRowFloats <= up; j0 += kRowFloats) {
+        for (int l0 = 0; l0 < kLanes; l0 += kRowFloats) {
+          lanes::transpose_block<RowF>(&yt[static_cast<std::size_t>(j0 * kLanes + l0)], kLanes, dst + l0 * up + j0, up);
         }
       }
       for (int l = 0; l < kLanes; ++l)
