@@ -5,17 +5,16 @@
 // scalar code would (the build turns contraction off), and the vectorised loops give the scalar
 // formulas' results bit for bit. Internal to audio/.
 //
-// The width is the target's: 64 bytes (8 doubles) with AVX-512, 32 bytes (4) with AVX, 16 bytes
-// (2) otherwise (x86-64's baseline SSE2, or NEON). A vector wider than the registers is lowered
-// through memory (GCC spills its parts to the stack at every operation): with 64-byte vectors
-// everywhere the onset analysis took about five times as long on an AVX2 machine as with 32-byte
-// ones (docs/performance.md). The loops are written in terms of kWidth, and each lane is an
-// output of its own, so how many outputs share one vector changes no output's bits.
+// The width is the target's (engine/core/vector_width.h): 8 doubles with AVX-512, 4 with AVX, 2
+// otherwise. The loops are written in terms of kWidth, and each lane is an output of its own, so
+// how many outputs share one vector changes no output's bits.
 #pragma once
 
 #include <cstddef>
 #include <cstring>
 #include <utility>
+
+#include "engine/core/vector_width.h"
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -23,13 +22,7 @@
 
 namespace gmg::audio::lanes {
 
-#if defined(__AVX512F__)
-constexpr int kBytes = 64;
-#elif defined(__AVX__)
-constexpr int kBytes = 32;
-#else
-constexpr int kBytes = 16;
-#endif
+constexpr int kBytes = kVectorBytes;
 constexpr int kWidth = kBytes / static_cast<int>(sizeof(double));
 using Lanes = double __attribute__((vector_size(kBytes)));
 using LaneBits = long long __attribute__((vector_size(kBytes)));

@@ -1,36 +1,55 @@
 #include "graph/candidate_gathering.h"
 
-#include <utility>
+#include <algorithm>
 
 namespace gmg::neighbours {
 
-void Gathered::resolve(const PoseSpace& s, int l, std::vector<int>& out) {
-  out.clear();
-  if (k_ && items_.size() > k_) select(s, l);
-  for (const Candidate& c : items_) out.push_back(c.r);
-  std::sort(out.begin(), out.end());
+Gathered::Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items,
+                   std::vector<std::pair<double, int>>& ties)
+    : space_(space), k_(k), radius_(radius), items_(items), ties_(ties) {
+  items_.clear();
 }
 
-void Gathered::compact(const PoseSpace& s) {
+void Gathered::add(float d, int r) {
+  items_.push_back({d, r});
+  if (k_ && items_.size() >= 2 * k_ + 32) compact();
+}
+
+// Keeps the members within the radius of the k-th nearest so far (a few past k): the list stays
+// short however many frames lie under the threshold.
+void Gathered::compact() {
   std::nth_element(items_.begin(), items_.begin() + static_cast<std::ptrdiff_t>(k_ - 1), items_.end(),
                    [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
-  radius_ = std::min(radius_, kth_radius(s, items_[k_ - 1].d));
+  limit(kth_radius(space_, items_[k_ - 1].d));
   items_.erase(std::remove_if(items_.begin(), items_.end(), [&](const Candidate& c) { return c.d > radius_; }),
                items_.end());
 }
 
-void Gathered::select(const PoseSpace& s, int l) {
-  std::sort(items_.begin(), items_.end(), [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
-  const float kth = items_[k_ - 1].d;
-  const float lo = kth - 2.02f * s.error(kth), hi = kth_radius(s, kth);
-  std::size_t sure = 0;
-  while (sure < items_.size() && items_[sure].d < lo) ++sure;
-  std::vector<std::pair<double, int>> unsure;
-  for (std::size_t i = sure; i < items_.size() && items_[i].d <= hi; ++i)
-    unsure.emplace_back(s.exact(l, items_[i].r), items_[i].r);
-  std::sort(unsure.begin(), unsure.end());
-  items_.resize(sure);
-  for (std::size_t i = 0; i < unsure.size() && items_.size() < k_; ++i) items_.push_back({0.0f, unsure[i].second});
+void Gathered::resolve(int l, std::vector<Candidate>& out) {
+  out.clear();
+  for (const Candidate& c : items_)
+    if (c.d <= radius_) out.push_back(c);
+  if (k_ && out.size() > k_) {
+    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
+    const float kth = out[k_ - 1].d;
+    const float lo = kth - 2.02f * space_.error(kth), hi = kth_radius(space_, kth);
+    std::size_t sure = 0;
+    while (sure < out.size() && out[sure].d < lo) ++sure;
+    ties_.clear();
+    std::size_t end = sure;
+    for (; end < out.size() && out[end].d <= hi; ++end) ties_.emplace_back(space_.exact(l, out[end].r), static_cast<int>(end));
+    std::sort(ties_.begin(), ties_.end(), [&](const std::pair<double, int>& a, const std::pair<double, int>& b) {
+      return a.first < b.first || (a.first == b.first && out[static_cast<std::size_t>(a.second)].r <
+                                                             out[static_cast<std::size_t>(b.second)].r);
+    });
+    // The tied members that make it, after the sure ones.
+    std::vector<Candidate> chosen;
+    for (std::size_t i = 0; i < ties_.size() && sure + chosen.size() < k_; ++i)
+      chosen.push_back(out[static_cast<std::size_t>(ties_[i].second)]);
+    out.resize(sure);
+    out.insert(out.end(), chosen.begin(), chosen.end());
+  }
+  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.r < b.r; });
 }
 
 }  // namespace gmg::neighbours

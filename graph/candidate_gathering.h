@@ -1,14 +1,13 @@
-// Gathering a frame's candidates K_l (graph/neighbours.h) as a search finds them: which pairs may
+// Gathering a frame's candidates K_l (graph/neighbours.h) as the search finds them: which pairs may
 // be transitions at all, and the members kept so far under a radius that shrinks once the bound k
-// is reached. Both finders (exact_finder.h, tree_finder.h) gather through it, so they agree on
-// K_l exactly. Internal to graph/.
+// is reached. Internal to graph/.
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdlib>
 #include <vector>
 
+#include "graph/neighbours.h"
 #include "graph/pose_space.h"
 
 namespace gmg::neighbours {
@@ -24,49 +23,38 @@ struct Allowed {
   }
 };
 
-struct Candidate {
-  float d;  // d(l, r) in single precision
-  int r;
-};
+// The radius within which a member can still be among the k nearest, once the k-th nearest float
+// distance is `kth`: the k-th plus the float error of two distances.
+inline float kth_radius(const PoseSpace& s, float kth) { return kth + 2.02f * s.error(kth); }
 
-// The candidates gathered for one frame: members only (d(l, r) <= theta_l, decided exactly) and,
-// with a bound k, a shrinking radius: once k members are in, none farther than the k-th (plus
-// float error) can belong to K_l.
+// The members gathered for frame l (each with d(l, r) <= theta_l, decided exactly): keeps them
+// while the search adds more, and gives K_l at the end.
 class Gathered {
  public:
-  Gathered() = default;
-  Gathered(float radius, std::size_t k) : radius_(radius), k_(k) {}
+  // `items` and `ties` are the caller's (a thread's scratch), cleared here; radius < 0: no member.
+  Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items,
+           std::vector<std::pair<double, int>>& ties);
   float radius() const { return radius_; }
-  const std::vector<Candidate>& items() const { return items_; }
-  void clear() { items_ = {}; }
 
-  void add(const PoseSpace& s, float d, int r) {
-    items_.push_back({d, r});
-    if (k_ && items_.size() >= 2 * k_ + 32) compact(s);
-  }
+  // A member at float distance d; with a bound, the radius shrinks to the k-th nearest member's
+  // (plus float error) once k are in: none farther can belong to K_l.
+  void add(float d, int r);
+  // The radius a search may use: at most the current one.
+  void limit(float radius) { radius_ = radius < radius_ ? radius : radius_; }
 
-  // Takes the members of another gathering of the same frame.
-  void merge(const PoseSpace& s, const Gathered& other) {
-    radius_ = std::min(radius_, other.radius_);
-    for (const Candidate& c : other.items_)
-      if (c.d <= radius_) add(s, c.d, c.r);
-  }
-
-  // K_l, ascending (see neighbours.h).
-  void resolve(const PoseSpace& s, int l, std::vector<int>& out);
+  // K_l by ascending r: the members within the radius, and with a bound the k nearest by (d in
+  // double, r): those clearly nearer than the k-th float distance, and the best of those within
+  // float error of it, ranked in double. Each keeps its float distance.
+  void resolve(int l, std::vector<Candidate>& out);
 
  private:
-  float kth_radius(const PoseSpace& s, float kth) const { return kth + 2.02f * s.error(kth); }
+  void compact();
 
-  void compact(const PoseSpace& s);
-
-  // Keeps the k nearest by (d in double, r): those clearly nearer than the k-th float distance,
-  // and the best of those within float error of it, ranked in double.
-  void select(const PoseSpace& s, int l);
-
-  std::vector<Candidate> items_;
-  float radius_ = -1.0f;
-  std::size_t k_ = 0;
+  const PoseSpace& space_;
+  std::size_t k_;
+  float radius_;
+  std::vector<Candidate>& items_;
+  std::vector<std::pair<double, int>>& ties_;
 };
 
 }  // namespace gmg::neighbours

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
+#include <atomic>
+#include <cstdint>
+#include <limits>
 
 #include "engine/core/error.h"
+#include "engine/core/parallel.h"
 #include "graph/neighbours.h"
 #include "graph/pruning.h"
 
@@ -30,24 +33,77 @@ std::vector<double> continuity_thresholds(const PoseFeatures& f, const std::vect
 
 namespace {
 
-// Pruning 1 on the frame's candidates, pruning 2 against the edges so far, then the
-// max_transitions nearest survivors (by weight, then target), by ascending target.
-void transitions_of(int l, const std::vector<int>& candidates, const PoseFeatures& f, const GraphParams& params,
-                    const EdgeIndex& index, std::vector<Transition>& edges) {
-  const std::size_t first = edges.size();
-  for (const int r : prune_runs(candidates, params.l_pn)) {
-    if (index.covers(l, r, params.l_pn)) continue;
-    edges.push_back({l, r, pose_distance(f, l, r, params)});
+// How many of a frame's pruning-1 survivors the parallel search keeps for pruning 2, nearest
+// first. Pruning 2 drops a survivor only when an edge from the previous l_pn frames already makes
+// the same jump, so the bound is nearly always settled among the first few; a frame whose kept
+// survivors run out before it is settled is searched again (settle_frame). 16 x 8 bytes a frame.
+constexpr std::size_t kKeptSurvivors = 16;
+
+// Every frame's pruning-1 survivors by ascending (float d, r): at most `stride` a frame in fixed
+// slots (and whether the frame had more), or with stride 0 (no bound) every one in a list.
+struct Survivors {
+  std::size_t stride = 0;
+  std::vector<Candidate> slots;       // frame l's at [l * stride, l * stride + count[l])
+  std::vector<std::uint8_t> count;
+  std::vector<std::uint8_t> truncated;
+  std::vector<std::vector<Candidate>> lists;  // stride 0
+
+  Survivors(int n, std::size_t kept) : stride(kept) {
+    if (stride) {
+      slots.resize(static_cast<std::size_t>(n) * stride);
+      count.assign(static_cast<std::size_t>(n), 0);
+      truncated.assign(static_cast<std::size_t>(n), 0);
+    } else {
+      lists.resize(static_cast<std::size_t>(n));
+    }
   }
+};
+
+bool nearer(const Candidate& a, const Candidate& b) { return a.d < b.d || (a.d == b.d && a.r < b.r); }
+
+// One frame's pruning-1 survivors (into `out`, nearest first).
+void survivors_of(const CandidateSearch& search, int l, int l_pn, CandidateScratch& scratch,
+                  std::vector<Candidate>& candidates, std::vector<Candidate>& out) {
+  search.find(l, scratch, candidates);
+  out.clear();
+  prune_runs(candidates, l_pn, out);
+  std::sort(out.begin(), out.end(), nearer);
+}
+
+// Pruning 2 against the edges so far, then at most max_transitions of the survivors, the nearest
+// by (d in double, r), appended to `edges` by ascending target. `survivors` is nearest first by
+// float d; with `complete` false it is only the first of them and this returns false, adding
+// nothing, when the frames past it could still decide the bound.
+bool settle_frame(int l, const Candidate* survivors, std::size_t count, bool complete, const CandidateSearch& search,
+                  const GraphParams& params, const EdgeIndex& index, std::vector<Transition>& edges) {
   const std::size_t limit = static_cast<std::size_t>(params.max_transitions);
-  if (limit == 0 || edges.size() - first <= limit) return;
+  const std::size_t first = edges.size();
+  // Survivors of pruning 2, nearest first. Once `limit` are in, only those within float error of
+  // the last one's distance can still rank before it in double.
+  float reach = std::numeric_limits<float>::infinity();
+  std::size_t passed = 0, i = 0;
+  for (; i < count; ++i) {
+    const Candidate& c = survivors[i];
+    if (c.d > reach) break;
+    if (index.covers(l, c.r, params.l_pn)) continue;
+    edges.push_back({l, c.r, static_cast<double>(c.d)});
+    if (limit && ++passed == limit) reach = c.d + 2.02f * search.error(c.d);
+  }
+  if (i == count && !complete) {
+    edges.resize(first);
+    return false;
+  }
+  for (std::size_t e = first; e < edges.size(); ++e) edges[e].weight = search.distance(l, edges[e].to);
   const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(first);
-  const auto keep = begin + static_cast<std::ptrdiff_t>(limit);
-  std::partial_sort(begin, keep, edges.end(), [](const Transition& a, const Transition& b) {
-    return a.weight < b.weight || (a.weight == b.weight && a.to < b.to);
-  });
-  edges.erase(keep, edges.end());
+  if (limit && edges.size() - first > limit) {
+    const auto keep = begin + static_cast<std::ptrdiff_t>(limit);
+    std::partial_sort(begin, keep, edges.end(), [](const Transition& a, const Transition& b) {
+      return a.weight < b.weight || (a.weight == b.weight && a.to < b.to);
+    });
+    edges.erase(keep, edges.end());
+  }
   std::sort(begin, edges.end(), [](const Transition& a, const Transition& b) { return a.to < b.to; });
+  return true;
 }
 
 }  // namespace
@@ -59,35 +115,61 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
   std::vector<Transition> edges;
   if (n < 2) return edges;
   const std::vector<double> theta = continuity_thresholds(f, run_end, params);
-  const std::unique_ptr<CandidateFinder> finder =
-      make_candidate_finder(f, theta, params, neighbour_search_for(params, n), candidate_search_workers());
-  const int step = finder->block_size();
+  const CandidateSearch search(f, theta, params, neighbour_search_for(params, n));
+
+  // 1. Every frame's candidates and pruning 1, in parallel and in the tree's order (each thread
+  //    takes a run of neighbouring frames, whose searches read the same part of the tree).
+  Survivors survivors(n, params.max_transitions > 0 ? kKeptSurvivors : 0);
+  const int workers = candidate_search_workers();
+  struct Work {
+    CandidateScratch scratch;
+    std::vector<Candidate> candidates, kept;
+  };
+  std::vector<Work> work(static_cast<std::size_t>(workers));
+  const std::vector<int>& order = search.query_order();
+  constexpr std::size_t kChunk = 512;
+  const std::size_t chunks = (static_cast<std::size_t>(n) + kChunk - 1) / kChunk;
+  std::atomic<std::size_t> chunks_done{0};
+  parallel_for(chunks, workers, [&](std::size_t chunk, int worker) {
+    Work& w = work[static_cast<std::size_t>(worker)];
+    for (std::size_t q = chunk * kChunk; q < std::min(static_cast<std::size_t>(n), (chunk + 1) * kChunk); ++q) {
+      const int l = order[q];
+      survivors_of(search, l, params.l_pn, w.scratch, w.candidates, w.kept);
+      const std::size_t fl = static_cast<std::size_t>(l);
+      if (survivors.stride == 0) {
+        survivors.lists[fl] = w.kept;
+        continue;
+      }
+      const std::size_t m = std::min(survivors.stride, w.kept.size());
+      std::copy(w.kept.begin(), w.kept.begin() + static_cast<std::ptrdiff_t>(m),
+                survivors.slots.begin() + static_cast<std::ptrdiff_t>(fl * survivors.stride));
+      survivors.count[fl] = static_cast<std::uint8_t>(m);
+      survivors.truncated[fl] = w.kept.size() > m ? 1 : 0;
+    }
+    const std::size_t done = ++chunks_done;
+    if (progress && worker == 0) progress(static_cast<int>(std::min(static_cast<std::size_t>(n), done * kChunk)), n);
+  });
+
+  // 2. Pruning 2 and the bound, in frame order: pruning 2 looks at the edges of earlier frames.
   if (params.max_transitions > 0)
     edges.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(std::min(params.max_transitions, 8)));
-
   EdgeIndex index(n);
-  using Lists = std::vector<std::vector<int>>;
-  // Candidates of a block are found (in parallel) while pruning 2, which depends on the edges
-  // of earlier left frames, walks the previous block in order on this thread.
-  auto compute = [&](int block) {
-    Lists lists;
-    finder->next(block, std::min(step, n - block), lists);
-    return lists;
-  };
-  std::future<Lists> next = std::async(std::launch::async, compute, 0);
-  for (int block = 0; block < n; block += step) {
-    const Lists candidates = next.get();
-    if (block + step < n) next = std::async(std::launch::async, compute, block + step);
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      const int l = block + static_cast<int>(i);
-      const std::size_t first = edges.size();
-      transitions_of(l, candidates[i], f, params, index, edges);
-      // Pruning 2 looks only at earlier left frames: this frame's edges join the index after
-      // all of its candidates were tested.
-      for (std::size_t e = first; e < edges.size(); ++e) index.add(l, edges[e].to);  // ascending
+  Work& w = work.front();
+  for (int l = 0; l < n; ++l) {
+    const std::size_t fl = static_cast<std::size_t>(l);
+    const std::size_t first = edges.size();
+    if (survivors.stride == 0) {
+      settle_frame(l, survivors.lists[fl].data(), survivors.lists[fl].size(), true, search, params, index, edges);
+      std::vector<Candidate>().swap(survivors.lists[fl]);
+    } else if (!settle_frame(l, survivors.slots.data() + fl * survivors.stride, survivors.count[fl],
+                             survivors.truncated[fl] == 0, search, params, index, edges)) {
+      survivors_of(search, l, params.l_pn, w.scratch, w.candidates, w.kept);  // all of them, this time
+      settle_frame(l, w.kept.data(), w.kept.size(), true, search, params, index, edges);
     }
-    if (progress) progress(std::min(n, block + step), n);
+    // This frame's edges join the index after all of its candidates were tested.
+    for (std::size_t e = first; e < edges.size(); ++e) index.add(l, edges[e].to);  // ascending
   }
+  if (progress) progress(n, n);
   return edges;
 }
 

@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "engine/core/parallel.h"
-#include "graph/exact_finder.h"
 #include "graph/tree_finder.h"
 
 namespace gmg {
@@ -28,24 +27,40 @@ int candidate_limit(const GraphParams& params) {
   return static_cast<int>(std::min<long long>(k, std::numeric_limits<int>::max()));
 }
 
-std::unique_ptr<CandidateFinder> make_candidate_finder(const PoseFeatures& features, const std::vector<double>& theta,
-                                                       const GraphParams& params, NeighbourSearch search, int workers) {
-  workers = std::max(1, workers);
+CandidateSearch::CandidateSearch(const PoseFeatures& features, const std::vector<double>& theta,
+                                 const GraphParams& params, NeighbourSearch search) {
   if (search == NeighbourSearch::Auto) search = neighbour_search_for(params, features.frame_count());
-  if (search == NeighbourSearch::Exact) return neighbours::make_exact_finder(features, theta, params, workers);
-  return neighbours::make_tree_finder(features, theta, params, workers);
+  const long checks = search == NeighbourSearch::Exact ? 0 : params.ann_checks;
+  tree_ = std::make_unique<neighbours::CandidateTree>(features, theta, params, checks);
 }
+
+CandidateSearch::~CandidateSearch() = default;
+
+int CandidateSearch::frames() const { return tree_->frames(); }
+
+const std::vector<int>& CandidateSearch::query_order() const { return tree_->order(); }
+
+void CandidateSearch::find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const {
+  tree_->find(l, scratch, out);
+}
+
+float CandidateSearch::error(float d) const { return tree_->space().error(d); }
+
+double CandidateSearch::distance(int l, int r) const { return tree_->space().exact(l, r); }
 
 std::vector<std::vector<int>> candidate_sets(const PoseFeatures& features, const std::vector<double>& theta,
                                              const GraphParams& params, NeighbourSearch search) {
-  const int n = features.frame_count();
-  const std::unique_ptr<CandidateFinder> finder =
-      make_candidate_finder(features, theta, params, search, candidate_search_workers());
-  std::vector<std::vector<int>> all, block;
-  for (int first = 0; first < n; first += finder->block_size()) {
-    finder->next(first, std::min(finder->block_size(), n - first), block);
-    for (auto& b : block) all.push_back(std::move(b));
-  }
+  const CandidateSearch finder(features, theta, params, search);
+  const int n = finder.frames();
+  std::vector<std::vector<int>> all(static_cast<std::size_t>(n));
+  const int workers = candidate_search_workers();
+  std::vector<CandidateScratch> scratch(static_cast<std::size_t>(workers));
+  std::vector<std::vector<Candidate>> found(static_cast<std::size_t>(workers));
+  parallel_for(static_cast<std::size_t>(n), workers, [&](std::size_t l, int worker) {
+    std::vector<Candidate>& k = found[static_cast<std::size_t>(worker)];
+    finder.find(static_cast<int>(l), scratch[static_cast<std::size_t>(worker)], k);
+    for (const Candidate& c : k) all[l].push_back(c.r);
+  });
   return all;
 }
 

@@ -5,21 +5,18 @@
 // |r - l| > l_pn unless exclude_near is off), where k = candidates_per_transition *
 // max_transitions; with max_transitions 0, K_l holds them all (the paper's candidates).
 //
-// Two searches find it, both in the pose space of graph/pose_space.h and gathering through
-// graph/candidate_gathering.h:
-// - exact (graph/exact_finder.cpp): every pair's distance is bounded from below by
-//   principal-axis projections of the positions and velocities (one matrix product per tile of
-//   pairs, each tile serving both directions since d(l, r) = d(r, l)); only pairs whose bound is
-//   within reach get d. Time grows as frames^2, memory linearly.
-// - approximate (graph/tree_finder.cpp): a k-d tree over the same projections, searched best
-//   first with the same lower bound, refined by d. Run to the end (ann_checks 0) it is exact; with
-//   ann_checks it stops after that many distance evaluations per frame (time ~ frames *
-//   log(frames)).
+// One search finds it (graph/tree_finder.h): a k-d tree over principal-axis projections of the
+// pose space (graph/pose_space.h), whose boxes and points bound d from below, searched best first
+// and refined by d. Searched to the end (NeighbourSearch::Exact) it finds K_l exactly; with a
+// budget (Approximate: at most ann_checks frames examined per frame) its time per frame does not
+// grow with the reference, and it misses a few far members (recall >= 0.95 of the exact pairs on
+// the shared recordings and synthetic speakers up to 19 h; docs/performance.md).
 // Distances are screened in single precision; any decision within float error of a threshold or
-// of the k-th distance is taken on d in double, so both searches give the same K_l exactly.
+// of the k-th distance is taken on d in double, so the exact search gives K_l exactly.
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "graph/features.h"
@@ -27,34 +24,63 @@
 
 namespace gmg {
 
+namespace neighbours {
+class CandidateTree;
+}
+
 // The search `params.neighbours` asks for with `frames` frames (Auto resolved).
 NeighbourSearch neighbour_search_for(const GraphParams& params, int frames);
 
 // K_l's size bound (see above); 0 = unbounded.
 int candidate_limit(const GraphParams& params);
 
-// Finds K_l for consecutive blocks of frames, in order: next(first, count) with first = 0, then
-// the previous first + count, and so on. Blocks are computed by `workers` threads.
-class CandidateFinder {
- public:
-  virtual ~CandidateFinder() = default;
-  // out[i] = K_{first + i}, ascending.
-  virtual void next(int first, int count, std::vector<std::vector<int>>& out) = 0;
-  // Frames per block the finder works best with.
-  virtual int block_size() const = 0;
-};
-
-// The threads the candidate search runs on: one per hardware thread (engine/core/parallel.h),
-// at most 4 (every worker keeps its own gathering of a block's left frames, merged after the
-// pass).
+// The threads the candidate search runs on: one per hardware thread (engine/core/parallel.h), at
+// most 4.
 int candidate_search_workers();
 
-// theta[l] is frame l's threshold (graph/continuity.h). `features` and `theta` must outlive the
-// finder.
-std::unique_ptr<CandidateFinder> make_candidate_finder(const PoseFeatures& features, const std::vector<double>& theta,
-                                                       const GraphParams& params, NeighbourSearch search, int workers);
+// A member r of K_l and d(l, r) in single precision (within CandidateSearch::error of d).
+struct Candidate {
+  float d;
+  int r;
+};
 
-// K_l of every frame with the given search (for tests and recall measurements).
+// One thread's working memory for CandidateSearch::find (reused across calls).
+struct CandidateScratch {
+  std::vector<std::pair<float, int>> open;  // tree nodes to visit, by lower bound (a min-heap)
+  std::vector<float> kth;                   // the k smallest member distances so far (a max-heap)
+  std::vector<Candidate> items;             // the members so far
+  std::vector<std::pair<double, int>> ties; // members within float error of the k-th, in double
+};
+
+// K_l of any frame, from any thread (const; each thread brings its own scratch). `features`,
+// `theta` and `params` must outlive it.
+class CandidateSearch {
+ public:
+  // theta[l] is frame l's threshold (graph/continuity.h); search is Exact or Approximate (Auto is
+  // resolved with neighbour_search_for).
+  CandidateSearch(const PoseFeatures& features, const std::vector<double>& theta, const GraphParams& params,
+                  NeighbourSearch search);
+  ~CandidateSearch();
+  CandidateSearch(const CandidateSearch&) = delete;
+  CandidateSearch& operator=(const CandidateSearch&) = delete;
+
+  int frames() const;
+  // Every frame once, in the tree's order: queries taken in this order read the same few nodes and
+  // leaves one after another (a frame's neighbours are its neighbours' too), where frame order
+  // jumps across the whole tree at every query.
+  const std::vector<int>& query_order() const;
+  // out = K_l by ascending r, each with d(l, r) in single precision.
+  void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
+  // An upper bound of |float d - d| for distances up to d.
+  float error(float d) const;
+  // d(l, r) in double (graph/features.h).
+  double distance(int l, int r) const;
+
+ private:
+  std::unique_ptr<neighbours::CandidateTree> tree_;
+};
+
+// K_l of every frame with the given search, as frame lists (for tests and recall measurements).
 std::vector<std::vector<int>> candidate_sets(const PoseFeatures& features, const std::vector<double>& theta,
                                              const GraphParams& params, NeighbourSearch search);
 

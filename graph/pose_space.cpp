@@ -16,9 +16,10 @@ PoseSpace::PoseSpace(const PoseFeatures& f, const GraphParams& params) : feature
   mean_v_ = f.velocities.rowwise().mean();
   const Eigen::MatrixXd ep = principal_axes(f.positions, mean_p_), ev = principal_axes(f.velocities, mean_v_);
   kp_ = static_cast<int>(ep.cols());
-  proj_.resize(ep.cols() + ev.cols(), n_);
-  proj_.topRows(ep.cols()) = ((ep.transpose() * f.positions).colwise() - ep.transpose() * mean_p_).cast<float>();
-  proj_.bottomRows(ev.cols()) = ((ev.transpose() * f.velocities).colwise() - ev.transpose() * mean_v_).cast<float>();
+  kv_ = static_cast<int>(ev.cols());
+  proj_ = Eigen::MatrixXf::Zero(kProjections, n_);
+  proj_.topRows(kp_) = ((ep.transpose() * f.positions).colwise() - ep.transpose() * mean_p_).cast<float>();
+  proj_.middleRows(8, kv_) = ((ev.transpose() * f.velocities).colwise() - ev.transpose() * mean_v_).cast<float>();
 }
 
 void PoseSpace::set_order(const std::vector<int>& order) {

@@ -3,11 +3,15 @@
 
 #include <vector>
 
+#include "graph/neighbours.h"
+
 namespace gmg {
 
 // Pruning 1: candidates of one left frame (right frames, ascending); in each run of consecutive
 // frame numbers keep the first, drop the next l_pn - 1, then keep again. l_pn >= 1.
 std::vector<int> prune_runs(const std::vector<int>& candidates, int l_pn);
+// The same on candidates with their distances (sorted by frame), appended to `out`.
+void prune_runs(const std::vector<Candidate>& candidates, int l_pn, std::vector<Candidate>& out);
 
 // Pruning 2: the unnatural edges added so far, by source frame. A candidate l -> r is dropped
 // when an edge a -> b exists with |a - l| <= l_pn and |b - r| <= l_pn, or |a - r| <= l_pn and

@@ -2,182 +2,168 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
-
-#include <Eigen/Core>
-
-#include "engine/core/parallel.h"
-#include "graph/candidate_gathering.h"
-#include "graph/pose_space.h"
 
 namespace gmg::neighbours {
 namespace {
 
-using Lists = std::vector<std::vector<int>>;
-
-class TreeFinder : public CandidateFinder {
- public:
-  TreeFinder(const PoseFeatures& f, const std::vector<double>& theta, const GraphParams& params, int workers)
-      : space_(f, params),
-        theta_(theta),
-        allowed_{params.l_pn, params.exclude_near},
-        k_(static_cast<std::size_t>(candidate_limit(params))),
-        max_checks_(params.ann_checks),
-        workers_(workers) {
-    const int n = space_.frames();
-    order_.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) order_[static_cast<std::size_t>(i)] = i;
-    if (n > 0) build(0, n);
-    space_.set_order(order_);
-  }
-
-  int block_size() const override { return 256; }
-
-  void next(int first, int count, Lists& out) override {
-    out.assign(static_cast<std::size_t>(count), {});
-    if (scratch_.size() < static_cast<std::size_t>(workers_)) scratch_.resize(static_cast<std::size_t>(workers_));
-    constexpr int kChunk = 8;
-    parallel_for(static_cast<std::size_t>((count + kChunk - 1) / kChunk), workers_, [&](std::size_t chunk, int worker) {
-      const int begin = static_cast<int>(chunk) * kChunk;
-      for (int i = begin; i < std::min(count, begin + kChunk); ++i)
-        query(first + i, scratch_[static_cast<std::size_t>(worker)], out[static_cast<std::size_t>(i)]);
-    });
-  }
-
- private:
-  static constexpr int kLeaf = 24;
-
-  struct Node {
-    int begin, end;             // range of order_ (tree order)
-    int left = -1, right = -1;  // children; -1 for a leaf
-  };
-
-  struct Scratch {
-    std::vector<std::pair<float, int>> heap;  // open nodes by lower bound (min-heap)
-    std::vector<float> kth;                   // the k smallest member distances (max-heap)
-  };
-
-  int build(int begin, int end) {
-    const int id = static_cast<int>(nodes_.size());
-    nodes_.push_back({begin, end});
-    const int dims = space_.dims();
-    Eigen::VectorXf lo = Eigen::VectorXf::Constant(dims, std::numeric_limits<float>::max());
-    Eigen::VectorXf hi = Eigen::VectorXf::Constant(dims, std::numeric_limits<float>::lowest());
-    for (int i = begin; i < end; ++i) {
-      const auto p = space_.projections().col(order_[static_cast<std::size_t>(i)]);
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    lo_.insert(lo_.end(), lo.data(), lo.data() + dims);
-    hi_.insert(hi_.end(), hi.data(), hi.data() + dims);
-    if (end - begin <= kLeaf) return id;
-    // Split the widest side (weighted as the distance weighs it) at the median.
-    int split = 0;
-    float widest = -1.0f;
-    for (int d = 0; d < dims; ++d) {
-      const float w = (hi(d) - lo(d)) * (d < space_.position_dims() ? space_.lambda_pos() : space_.lambda_vel());
-      if (w > widest) widest = w, split = d;
-    }
-    const int mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](int a, int b) { return space_.projections()(split, a) < space_.projections()(split, b); });
-    const int left = build(begin, mid);
-    const int right = build(mid, end);
-    nodes_[static_cast<std::size_t>(id)].left = left;
-    nodes_[static_cast<std::size_t>(id)].right = right;
-    return id;
-  }
-
-  // Lower bound of d(l, r) for every r in the node's box; q = l's projections.
-  float box_bound(int node, const float* q) const {
-    const int dims = space_.dims(), kp = space_.position_dims();
-    const float* lo = lo_.data() + static_cast<std::size_t>(node) * static_cast<std::size_t>(dims);
-    const float* hi = hi_.data() + static_cast<std::size_t>(node) * static_cast<std::size_t>(dims);
-    float sp = 0.0f, sv = 0.0f;
-    for (int d = 0; d < dims; ++d) {
-      const float gap = std::max(std::max(lo[d] - q[d], q[d] - hi[d]), 0.0f);
-      (d < kp ? sp : sv) += gap * gap;
-    }
-    return space_.lambda_pos() * std::sqrt(sp) + space_.lambda_vel() * std::sqrt(sv);
-  }
-
-  void query(int l, Scratch& s, std::vector<int>& out) const {
-    out.clear();
-    Gathered g(space_.radius(theta_[static_cast<std::size_t>(l)]), 0);
-    if (g.radius() < 0) return;
-    const int slot = space_.slot(l);
-    const float* q = space_.projections().col(slot).data();
-    float radius = g.radius();
-    s.heap.clear();
-    s.kth.clear();
-    auto later = [](const std::pair<float, int>& a, const std::pair<float, int>& b) { return a > b; };
-    s.heap.emplace_back(box_bound(0, q), 0);
-    long checks = 0;
-    while (!s.heap.empty()) {
-      std::pop_heap(s.heap.begin(), s.heap.end(), later);
-      const auto [bound, id] = s.heap.back();
-      s.heap.pop_back();
-      if (bound > radius) break;
-      const Node& node = nodes_[static_cast<std::size_t>(id)];
-      if (node.left >= 0) {
-        for (const int child : {node.left, node.right}) {
-          const float b = box_bound(child, q);
-          if (b <= radius) {
-            s.heap.emplace_back(b, child);
-            std::push_heap(s.heap.begin(), s.heap.end(), later);
-          }
-        }
-        continue;
-      }
-      checks += node.end - node.begin;
-      for (int i = node.begin; i < node.end; ++i) {
-        const int r = order_[static_cast<std::size_t>(i)];
-        if (!allowed_(l, r) || space_.lower_bound_slots(i, slot) > radius) continue;
-        const float d = space_.approx_slots(slot, i);
-        if (d > radius || !space_.within(l, r, d, theta_[static_cast<std::size_t>(l)])) continue;
-        g.add(space_, d, r);
-        if (k_) radius = shrink(s, d, radius);
-      }
-      if (max_checks_ > 0 && checks >= max_checks_) break;
-    }
-    // Members found before the radius shrank may lie beyond it now.
-    Gathered kept(radius, k_);
-    kept.merge(space_, g);
-    kept.resolve(space_, l, out);
-  }
-
-  // Tracks the k smallest member distances; the radius shrinks to the k-th plus float error.
-  float shrink(Scratch& s, float d, float radius) const {
-    if (s.kth.size() < k_) {
-      s.kth.push_back(d);
-      std::push_heap(s.kth.begin(), s.kth.end());
-    } else if (d < s.kth.front()) {
-      std::pop_heap(s.kth.begin(), s.kth.end());
-      s.kth.back() = d;
-      std::push_heap(s.kth.begin(), s.kth.end());
-    }
-    if (s.kth.size() < k_) return radius;
-    const float kth = s.kth.front();
-    return std::min(radius, kth + 2.02f * space_.error(kth));
-  }
-
-  PoseSpace space_;
-  const std::vector<double>& theta_;
-  Allowed allowed_;
-  std::size_t k_;
-  long max_checks_;
-  int workers_;
-  std::vector<int> order_;  // frames in tree order
-  std::vector<Node> nodes_;
-  std::vector<float> lo_, hi_;  // every node's box (dims floats per node)
-  mutable std::vector<Scratch> scratch_;
-};
+constexpr int kDims = PoseSpace::kProjections;
+static_assert(CandidateTree::kLeaf % kLanes == 0, "a leaf is a whole number of vectors");
 
 }  // namespace
 
-std::unique_ptr<CandidateFinder> make_tree_finder(const PoseFeatures& features, const std::vector<double>& theta,
-                                                  const GraphParams& params, int workers) {
-  return std::make_unique<TreeFinder>(features, theta, params, workers);
+CandidateTree::CandidateTree(const PoseFeatures& f, const std::vector<double>& theta, const GraphParams& params,
+                             long max_checks)
+    : space_(f, params),
+      theta_(theta),
+      allowed_{params.l_pn, params.exclude_near},
+      k_(static_cast<std::size_t>(candidate_limit(params))),
+      max_checks_(max_checks) {
+  const int n = space_.frames();
+  order_.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) order_[static_cast<std::size_t>(i)] = i;
+  if (n > 0) build(0, n);
+  space_.set_order(order_);
+  // The leaves' projections, dimension-major within each leaf.
+  const std::size_t leaves = (static_cast<std::size_t>(n) + kLeaf - 1) / kLeaf;
+  blocks_.assign(leaves * kDims * kLeaf, 0.0f);
+  for (int s = 0; s < n; ++s) {
+    float* block = blocks_.data() + static_cast<std::size_t>(s / kLeaf) * kDims * kLeaf;
+    for (int d = 0; d < kDims; ++d) block[d * kLeaf + s % kLeaf] = space_.projections()(d, s);
+  }
+}
+
+int CandidateTree::build(int begin, int end) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back({begin, end});
+  float lo[kDims], hi[kDims];
+  std::fill(lo, lo + kDims, std::numeric_limits<float>::max());
+  std::fill(hi, hi + kDims, std::numeric_limits<float>::lowest());
+  for (int i = begin; i < end; ++i) {
+    const float* p = space_.projections().col(order_[static_cast<std::size_t>(i)]).data();
+    for (int d = 0; d < kDims; ++d) {
+      lo[d] = std::min(lo[d], p[d]);
+      hi[d] = std::max(hi[d], p[d]);
+    }
+  }
+  lo_.insert(lo_.end(), lo, lo + kDims);
+  hi_.insert(hi_.end(), hi, hi + kDims);
+  if (end - begin <= kLeaf) return id;
+  // Split the widest side (weighted as the distance weighs it) near the median, at a whole number
+  // of leaves from `begin`, so that every leaf but the last holds exactly kLeaf frames.
+  int split = 0;
+  float widest = -1.0f;
+  for (int d = 0; d < kDims; ++d) {
+    const float w = (hi[d] - lo[d]) * (d < 8 ? space_.lambda_pos() : space_.lambda_vel());
+    if (w > widest) widest = w, split = d;
+  }
+  const int mid = begin + ((end - begin) / 2 + kLeaf - 1) / kLeaf * kLeaf;
+  const Eigen::MatrixXf& p = space_.projections();
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int a, int b) { return p(split, a) < p(split, b); });
+  const int left = build(begin, mid);
+  const int right = build(mid, end);
+  nodes_[static_cast<std::size_t>(id)].left = left;
+  nodes_[static_cast<std::size_t>(id)].right = right;
+  return id;
+}
+
+// Lower bound of d(l, r) for every r in the node's box; q = l's projections. The gaps are taken
+// sixteen rows at a time, their squares summed in the fixed order of float_lanes.h.
+float CandidateTree::box_bound(int node, const float* q) const {
+  const std::size_t at = static_cast<std::size_t>(node) * kDims;
+  const Sixteen lo = Sixteen::at(lo_.data() + at), hi = Sixteen::at(hi_.data() + at), x = Sixteen::at(q);
+  alignas(64) float g[kDims];
+  Sixteen squares;
+  for (int i = 0; i < Sixteen::kParts; ++i) {
+    const Floats below = lo.part[i] - x.part[i], above = x.part[i] - hi.part[i];
+    Floats gap = below > above ? below : above;
+    gap = gap > Floats{} ? gap : Floats{};
+    squares.part[i] = gap * gap;
+  }
+  squares.store(g);
+  return space_.lambda_pos() * std::sqrt(sum8(g)) + space_.lambda_vel() * std::sqrt(sum8(g + 8));
+}
+
+// Each lane a frame, its rows summed in order (PoseSpace::lower_bound_slots).
+void CandidateTree::leaf_bounds(int begin, const float* q, float* out) const {
+  const float* block = blocks_.data() + static_cast<std::size_t>(begin / kLeaf) * kDims * kLeaf;
+  for (int c = 0; c < kLeaf; c += kLanes) {
+    Floats sp = {}, sv = {};
+    for (int d = 0; d < 8; ++d) {
+      const Floats g = load(block + d * kLeaf + c) - q[d];
+      sp += g * g;
+    }
+    for (int d = 8; d < kDims; ++d) {
+      const Floats g = load(block + d * kLeaf + c) - q[d];
+      sv += g * g;
+    }
+    const Floats lb = space_.lambda_pos() * square_root(sp) + space_.lambda_vel() * square_root(sv);
+    std::memcpy(out + c, &lb, sizeof lb);
+  }
+}
+
+void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out) const {
+  const double theta = theta_[static_cast<std::size_t>(l)];
+  Gathered g(space_, k_, space_.radius(theta), s.items, s.ties);
+  if (g.radius() < 0) {
+    out.clear();
+    return;
+  }
+  const int slot = space_.slot(l);
+  const float* q = space_.projections().col(slot).data();
+  s.open.clear();
+  s.kth.clear();
+  auto later = [](const std::pair<float, int>& a, const std::pair<float, int>& b) { return a > b; };
+  s.open.emplace_back(box_bound(0, q), 0);
+  long checks = 0;
+  alignas(64) float lb[kLeaf];
+  // Best first: from the open node with the lowest bound, down into the nearer child at every
+  // level (the farther one waits among the open nodes), then through the leaf reached.
+  while (!s.open.empty()) {
+    std::pop_heap(s.open.begin(), s.open.end(), later);
+    auto [bound, id] = s.open.back();
+    s.open.pop_back();
+    if (bound > g.radius()) break;
+    const Node* node = &nodes_[static_cast<std::size_t>(id)];
+    while (node->left >= 0) {
+      float near = box_bound(node->left, q), far = box_bound(node->right, q);
+      int near_id = node->left, far_id = node->right;
+      if (far < near) std::swap(near, far), std::swap(near_id, far_id);
+      if (far <= g.radius()) {
+        s.open.emplace_back(far, far_id);
+        std::push_heap(s.open.begin(), s.open.end(), later);
+      }
+      if (near > g.radius()) break;
+      node = &nodes_[static_cast<std::size_t>(near_id)];
+    }
+    if (node->left >= 0) continue;
+    checks += node->end - node->begin;
+    leaf_bounds(node->begin, q, lb);
+    for (int i = 0; i < node->end - node->begin; ++i) {
+      if (lb[i] > g.radius()) continue;
+      const int r = order_[static_cast<std::size_t>(node->begin + i)];
+      if (!allowed_(l, r)) continue;
+      const float d = space_.approx_slots(slot, node->begin + i);
+      if (d > g.radius() || !space_.within(l, r, d, theta)) continue;
+      g.add(d, r);
+      if (k_ == 0) continue;
+      // The k smallest member distances: once k are in, nothing past the k-th (plus float error)
+      // can belong to K_l.
+      if (s.kth.size() < k_) {
+        s.kth.push_back(d);
+        std::push_heap(s.kth.begin(), s.kth.end());
+      } else if (d < s.kth.front()) {
+        std::pop_heap(s.kth.begin(), s.kth.end());
+        s.kth.back() = d;
+        std::push_heap(s.kth.begin(), s.kth.end());
+      }
+      if (s.kth.size() == k_) g.limit(kth_radius(space_, s.kth.front()));
+    }
+    if (max_checks_ > 0 && checks >= max_checks_) break;
+  }
+  g.resolve(l, out);
 }
 
 }  // namespace gmg::neighbours

@@ -1,21 +1,59 @@
-// The approximate candidate search (graph/neighbours.h): a k-d tree over the projections of the
-// pose space, searched best first. A node's box gives a lower bound of the distance to every frame
-// in it, so the search stops when the nearest unopened box is beyond the frame's radius (exact),
-// or after max_checks distance evaluations (approximate).
-// Internal to graph/: make_candidate_finder chooses the search.
+// The candidate search (graph/neighbours.h): a k-d tree over the principal-axis projections of the
+// pose space (graph/pose_space.h), searched best first. A node's box bounds d from below for every
+// frame in it, and so does each frame's projection; the search opens the boxes in order of that
+// bound and stops when the nearest unopened one is beyond the frame's radius (exact), or after
+// max_checks frames examined (approximate). Internal to graph/: CandidateSearch wraps it.
 #pragma once
 
-#include <memory>
 #include <vector>
 
 #include "graph/features.h"
 #include "graph/neighbours.h"
 #include "graph/params.h"
+#include "graph/candidate_gathering.h"
+#include "graph/pose_space.h"
 
 namespace gmg::neighbours {
 
-// theta, features and params must outlive the finder.
-std::unique_ptr<CandidateFinder> make_tree_finder(const PoseFeatures& features, const std::vector<double>& theta,
-                                                  const GraphParams& params, int workers);
+class CandidateTree {
+ public:
+  // max_checks 0: searched to the end. theta, features and params must outlive the tree.
+  CandidateTree(const PoseFeatures& features, const std::vector<double>& theta, const GraphParams& params,
+                long max_checks);
+
+  int frames() const { return space_.frames(); }
+  // Frames in tree order (slot s holds frame order()[s]).
+  const std::vector<int>& order() const { return order_; }
+  const PoseSpace& space() const { return space_; }
+  // K_l by ascending r, with float distances (neighbours.h).
+  void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
+
+  // Frames per leaf: one block of projections stored dimension by dimension, so that the lower
+  // bounds of a leaf's frames are computed as vectors (as many frames at a time as the registers
+  // hold), each frame's in the order of PoseSpace::lower_bound_slots.
+  static constexpr int kLeaf = 16;
+
+ private:
+  struct Node {
+    int begin, end;             // slots (tree order); a leaf's begin is a multiple of kLeaf
+    int left = -1, right = -1;  // children; -1 for a leaf
+  };
+
+  int build(int begin, int end);
+  float box_bound(int node, const float* q) const;
+  // The lower bounds of the frames in the leaf starting at slot `begin` (kLeaf values, of which
+  // only the leaf's own count).
+  void leaf_bounds(int begin, const float* q, float* out) const;
+
+  PoseSpace space_;
+  const std::vector<double>& theta_;
+  Allowed allowed_;
+  std::size_t k_;
+  long max_checks_;
+  std::vector<int> order_;      // frames in tree order
+  std::vector<Node> nodes_;
+  std::vector<float> lo_, hi_;  // every node's box, PoseSpace::kProjections floats a node
+  std::vector<float> blocks_;   // per leaf, PoseSpace::kProjections rows of kLeaf projections
+};
 
 }  // namespace gmg::neighbours

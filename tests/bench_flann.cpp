@@ -14,10 +14,10 @@
 // them, theta from continuity_thresholds, GraphParams defaults (k = 4 * 20 = 80, l_pn 10).
 //
 // Query frames: `queries` frames in blocks of `block` consecutive frames at random non-overlapping
-// places (seeded, the same for every method of a length); our finder is asked for each block with
-// next(first, block), as the build asks it for its blocks. Every index is built over all frames.
+// places (seeded, the same for every method of a length); our search is asked for each frame of a
+// block, the block's frames spread over the workers. Every index is built over all frames.
 //
-// 1. Ours: make_candidate_finder(Approximate) with ann_checks 0 (exact: the reference K_l),
+// 1. Ours: CandidateSearch (Approximate) with ann_checks 0 (exact: the reference K_l),
 //    2000, 1000, 500 (--ours-checks), on 1 worker. The exact reference is checked against a brute-force
 //    scan of all frames (in double) for `brute` of the query frames.
 // 2. FLANN: d = lp ||dp|| + lv ||dv|| is a sum of two norms, which FLANN cannot search. It indexes
@@ -182,21 +182,28 @@ struct Reference {
   int block = 0;
 };
 
-// Ours: the finder built, then asked for every query block. Returns the lists, fills the row.
+// Ours: the search built, then asked for every query frame (in blocks, as the analysis asks,
+// each block on `workers` threads). Returns the lists, fills the row.
 Lists run_ours(const Reference& ref, int checks, int workers, Row& row) {
   GraphParams p = ref.params;
   p.ann_checks = checks;
   const int n = ref.features.frame_count();
   Timer build;
-  const std::unique_ptr<CandidateFinder> finder =
-      make_candidate_finder(ref.features, ref.theta, p, NeighbourSearch::Approximate, workers);
+  const CandidateSearch search(ref.features, ref.theta, p, NeighbourSearch::Approximate);
   row.build_s = build.wall();
-  Lists all, out;
-  all.reserve(ref.frames.size());
+  Lists all(ref.frames.size());
+  std::vector<CandidateScratch> scratch(static_cast<std::size_t>(workers));
+  std::vector<std::vector<Candidate>> found(static_cast<std::size_t>(workers));
   Timer q;
+  std::size_t at = 0;
   for (const int first : ref.block_starts) {
-    finder->next(first, std::min(ref.block, n - first), out);
-    for (auto& o : out) all.push_back(std::move(o));
+    const int count = std::min(ref.block, n - first);
+    parallel_for(static_cast<std::size_t>(count), workers, [&](std::size_t i, int w) {
+      std::vector<Candidate>& k = found[static_cast<std::size_t>(w)];
+      search.find(first + static_cast<int>(i), scratch[static_cast<std::size_t>(w)], k);
+      for (const Candidate& c : k) all[at + i].push_back(c.r);
+    });
+    at += static_cast<std::size_t>(count);
   }
   row.cpu_s = q.cpu();
   row.wall_s = q.wall();
@@ -246,7 +253,9 @@ struct FastRefiner {
   void operator()(int l, const int* cand, const float* n_sq, int count, std::vector<int>& out) const {
     out.clear();
     const double theta = ref.theta[static_cast<std::size_t>(l)];
-    neighbours::Gathered g(space.radius(theta), k);
+    std::vector<Candidate> items, found;
+    std::vector<std::pair<double, int>> ties;
+    neighbours::Gathered g(space, k, space.radius(theta), items, ties);
     if (g.radius() < 0) return;
     const float reject = g.radius() * g.radius() * 1.001f + 1e-12f;
     for (int i = 0; i < count; ++i) {
@@ -254,9 +263,10 @@ struct FastRefiner {
       if (r < 0 || !allowed(l, r) || (n_sq && n_sq[i] > reject)) continue;
       const float d = space.approx(l, r);
       if (d > g.radius() || !space.within(l, r, d, theta)) continue;
-      g.add(space, d, r);
+      g.add(d, r);
     }
-    g.resolve(space, l, out);
+    g.resolve(l, found);
+    for (const Candidate& c : found) out.push_back(c.r);
   }
 };
 
@@ -312,13 +322,17 @@ Space proj_space(const Reference& ref) {
   const Eigen::MatrixXf& proj = ps.projections();  // frame order (no set_order)
   Space s;
   s.name = "proj";
-  s.dims = ps.dims();
+  // The rows in use: the position axes (rows 0 to 7), then the velocity axes (from row 8).
+  std::vector<int> rows;
+  for (int d = 0; d < ps.position_dims(); ++d) rows.push_back(d);
+  for (int d = 0; d < ps.velocity_dims(); ++d) rows.push_back(8 + d);
+  s.dims = static_cast<int>(rows.size());
   const int n = ps.frames();
   s.data.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(s.dims));
   for (int l = 0; l < n; ++l)
-    for (int d = 0; d < s.dims; ++d)
-      s.data[static_cast<std::size_t>(l) * static_cast<std::size_t>(s.dims) + static_cast<std::size_t>(d)] =
-          proj(d, l) * (d < ps.position_dims() ? ps.lambda_pos() : ps.lambda_vel());
+    for (int i = 0; i < s.dims; ++i)
+      s.data[static_cast<std::size_t>(l) * static_cast<std::size_t>(s.dims) + static_cast<std::size_t>(i)] =
+          proj(rows[static_cast<std::size_t>(i)], l) * (rows[static_cast<std::size_t>(i)] < 8 ? ps.lambda_pos() : ps.lambda_vel());
   s.build_s = t.wall();
   return s;
 }
