@@ -3,8 +3,11 @@
 #include <cmath>
 
 #include <algorithm>
+#include <optional>
 
 #include "engine/core/error.h"
+#include "engine/core/limits.h"
+#include "engine/core/spill.h"
 #include "engine/motion/body_parts.h"
 #include "graph/breaks.h"
 #include "graph/continuity.h"
@@ -12,6 +15,7 @@
 #include "graph/graph_builder.h"
 #include "graph/key_nodes.h"
 #include "graph/key_poses.h"
+#include "graph/pose_space.h"
 
 namespace gmg {
 
@@ -24,37 +28,20 @@ std::vector<int> MotionGraph::key_frames() const {
 
 namespace {
 
-// Every clip against the first: one skeleton, one fps, at least 2 frames. Returns the total.
-int check_clips(const std::vector<ClipEvents>& clips) {
-  if (clips.empty()) throw Error("graph build: no reference clip given");
-  const ClipEvents& first = clips.front();
-  int total = 0;
-  for (const ClipEvents& c : clips) {
-    std::string why;
-    if (!skeletons_match(first.motion.skeleton, c.motion.skeleton, &why))
-      throw Error(c.name + ": skeleton differs from " + first.name + "'s: " + why);
-    if (std::abs(c.motion.fps - first.motion.fps) > 1e-6)
-      throw Error(c.name + ": " + std::to_string(c.motion.fps) + " fps differs from " + first.name + "'s " +
-                  std::to_string(first.motion.fps) + " fps");
-    if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
-    if (c.speech_dims != first.speech_dims)
-      throw Error(c.name + ": has " + std::to_string(c.speech_dims) + " speech features per frame, " + first.name +
-                  " has " + std::to_string(first.speech_dims));
-    if (c.speech_dims < 0 || c.speech.size() != static_cast<std::size_t>(c.motion.frame_count) *
-                                                    static_cast<std::size_t>(std::max(0, c.speech_dims)))
-      throw Error(c.name + ": its speech features do not cover its frames");
-    total += c.motion.frame_count;
-  }
-  return total;
-}
+// The motion's rotations (or translations) past this many bytes go to the spill file: an hour of a
+// 55-joint reference is 190 MB of rotations and 140 MB of translations.
+constexpr std::size_t kMotionInMemory = std::size_t{256} << 20;
 
-// The pose features of clip m into columns [offset, offset + frames) of `out`, computed a piece
-// at a time: pose_features of a whole hour holds several copies of it (forward kinematics, its
-// transpose, the velocities). A piece starts one frame early so its first velocity is the
-// clip's (v_t = p_t - p_{t-1}); the values are those of one pose_features call on the clip.
-void clip_features(const Motion& m, int offset, PoseFeatures& out) {
+// The pose features of a clip, computed a piece at a time: pose_features of a whole hour holds
+// several copies of it (forward kinematics, its transpose, the velocities). A piece starts one
+// frame early so its first velocity is the clip's (v_t = p_t - p_{t-1}); the values are those of
+// one pose_features call on the clip.
+PoseFeatures clip_features(const Motion& m) {
   constexpr int kPiece = 4096;
   const std::size_t joints = static_cast<std::size_t>(m.joint_count());
+  PoseFeatures out;
+  out.positions.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
+  out.velocities.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
   for (int first = 0; first < m.frame_count; first += kPiece) {
     const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
     Motion piece = motion_rest(m.skeleton, m.fps, to - from);
@@ -63,90 +50,184 @@ void clip_features(const Motion& m, int offset, PoseFeatures& out) {
     std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
               m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
     const PoseFeatures f = pose_features(piece);
-    out.positions.middleCols(offset + first, to - first) = f.positions.rightCols(to - first);
-    out.velocities.middleCols(offset + first, to - first) = f.velocities.rightCols(to - first);
+    out.positions.middleCols(first, to - first) = f.positions.rightCols(to - first);
+    out.velocities.middleCols(first, to - first) = f.velocities.rightCols(to - first);
   }
+  return out;
 }
 
 // Per frame: the mean speed of `joints` (root-relative: the features' positions are, and their
-// velocities are frame steps) over the median of it.
-std::vector<float> upper_body_activity(const PoseFeatures& f, const std::vector<int>& joints) {
-  const Eigen::Index n = f.velocities.cols();
-  std::vector<float> out(static_cast<std::size_t>(n), 0.0f);
-  if (joints.empty() || n == 0) return out;
-  for (Eigen::Index t = 0; t < n; ++t) {
+// velocities are frame steps), appended to `out`; graph-wide it is then divided by its median.
+void append_upper_body_speed(const PoseFeatures& f, const std::vector<int>& joints, std::vector<float>& out) {
+  for (Eigen::Index t = 0; t < f.velocities.cols(); ++t) {
     double sum = 0.0;
     for (int j : joints) sum += f.velocities.block<3, 1>(3 * j, t).norm();
-    out[static_cast<std::size_t>(t)] = static_cast<float>(sum / static_cast<double>(joints.size()));
+    out.push_back(joints.empty() ? 0.0f : static_cast<float>(sum / static_cast<double>(joints.size())));
   }
-  std::vector<float> sorted = out;
+}
+
+void divide_by_median(std::vector<float>& values) {
+  if (values.empty()) return;
+  std::vector<float> sorted = values;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   const float median = sorted[sorted.size() / 2];
-  for (float& a : out) a = median > 0.0f ? a / median : 0.0f;
-  return out;
+  for (float& a : values) a = median > 0.0f ? a / median : 0.0f;
+}
+
+// One array of motion samples, in memory or spilled.
+template <typename T>
+Samples<T> finish_samples(SpillFile& spill) {
+  const SpillFile::Bytes b = spill.finish();
+  return Samples<T>::view(reinterpret_cast<const T*>(b.data), b.size / sizeof(T), b.owner, b.file.get());
 }
 
 }  // namespace
 
-MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress) {
-  graph_params_validate(params);
-  const int total = check_clips(clips);
-  const Motion& first = clips.front().motion;
+struct GraphBuild::State {
+  GraphParams params;
+  std::string spill_folder;
+  std::string first_name;
   MotionGraph g;
-  g.params = params;
-  g.motion = motion_rest(first.skeleton, first.fps, 0);
-  g.motion.frame_count = total;
-  g.speech_dims = clips.front().speech_dims;
-  g.speech.reserve(static_cast<std::size_t>(total) * static_cast<std::size_t>(g.speech_dims));
-  const std::size_t samples = static_cast<std::size_t>(total) * static_cast<std::size_t>(first.joint_count());
-  if (clips.size() > 1) {
-    g.motion.rotations.reserve(samples);
-    g.motion.translations.reserve(samples);
-  }
-  PoseFeatures features;
-  const Eigen::Index dims = 3 * static_cast<Eigen::Index>(first.joint_count());
-  features.positions.resize(dims, total);
-  features.velocities.resize(dims, total);
-  GraphBuilder builder(total);
+  std::optional<Motion> only;  // the first clip's samples, moved in, while it is the only one
+  std::unique_ptr<SpillFile> rotations, translations;
+  std::unique_ptr<FeatureStore> store;
+  std::unique_ptr<neighbours::PoseSpace> space;
+  std::vector<double> theta;
+  std::vector<NodeInfo> nodes;
+  std::vector<float> speed;
+  std::vector<int> upper_body;
+  std::vector<double> key_poses;
+  int frames = 0;
 
-  int offset = 0;
-  for (ClipEvents& c : clips) {
-    const Motion& m = c.motion;
-    g.clips.push_back({c.name, offset, m.frame_count});
-    g.speech.insert(g.speech.end(), c.speech.begin(), c.speech.end());
-    clip_features(m, offset, features);
-    mark_key_nodes(builder.nodes(), offset, c,
-                   capture_jump_frames(features.positions.middleCols(offset, m.frame_count), params));
-    offset += m.frame_count;
-    if (clips.size() == 1) {  // one clip: its samples are the graph's, no copy
-      g.motion.rotations = std::move(c.motion.rotations);
-      g.motion.translations = std::move(c.motion.translations);
-    } else {
-      g.motion.rotations.insert(g.motion.rotations.end(), m.rotations.begin(), m.rotations.end());
-      g.motion.translations.insert(g.motion.translations.end(), m.translations.begin(), m.translations.end());
+  void check(const ClipEvents& c) const {
+    const Motion& first = g.motion;
+    std::string why;
+    if (!skeletons_match(first.skeleton, c.motion.skeleton, &why))
+      throw Error(c.name + ": skeleton differs from " + first_name + "'s: " + why);
+    if (std::abs(c.motion.fps - first.fps) > 1e-6)
+      throw Error(c.name + ": " + std::to_string(c.motion.fps) + " fps differs from " + first_name + "'s " +
+                  std::to_string(first.fps) + " fps");
+  }
+
+  // The samples so far into the spill files (from the second clip on, the motion is appended).
+  void start_appending() {
+    rotations = std::make_unique<SpillFile>(spill_folder, kMotionInMemory);
+    translations = std::make_unique<SpillFile>(spill_folder, kMotionInMemory);
+    if (only) {
+      append_samples(*only);
+      only.reset();
     }
-    c.motion = Motion();  // release the clip's copy early
   }
 
-  // Natural edges inside continuous runs; run_end (a run's last frame) for the analysis.
-  std::vector<int> run_end(static_cast<std::size_t>(total));
-  int end = total - 1;
-  for (int f = total - 1; f >= 0; --f) {
-    if (builder.node(f).kinds & kBreakNode) end = f;
-    run_end[static_cast<std::size_t>(f)] = end;
+  void append_samples(const Motion& m) {
+    rotations->append(m.rotations.data(), m.rotations.size() * sizeof(glm::dquat));
+    translations->append(m.translations.data(), m.translations.size() * sizeof(glm::dvec3));
   }
-  for (int f = 0; f + 1 < total; ++f)
+};
+
+GraphBuild::GraphBuild(const GraphParams& params, std::string spill_folder) : s_(std::make_unique<State>()) {
+  graph_params_validate(params);
+  s_->params = params;
+  s_->spill_folder = std::move(spill_folder);
+  s_->g.params = params;
+}
+
+GraphBuild::~GraphBuild() = default;
+
+void GraphBuild::add(ClipEvents c) {
+  State& s = *s_;
+  if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
+  if (s.g.clips.empty()) {
+    s.first_name = c.name;
+    s.g.motion = motion_rest(c.motion.skeleton, c.motion.fps, 0);
+    s.g.speech_dims = c.speech_dims;
+    const int dims = 3 * c.motion.joint_count();
+    s.store = std::make_unique<FeatureStore>(dims, s.spill_folder);
+    s.space = std::make_unique<neighbours::PoseSpace>(*s.store, s.params);
+    s.upper_body = upper_body_joints(c.motion.skeleton);
+  } else {
+    s.check(c);
+  }
+  if (c.speech_dims != s.g.speech_dims)
+    throw Error(c.name + ": has " + std::to_string(c.speech_dims) + " speech features per frame, " + s.first_name +
+                " has " + std::to_string(s.g.speech_dims));
+  const Motion& m = c.motion;
+  if (c.speech_dims < 0 ||
+      c.speech.size() != static_cast<std::size_t>(m.frame_count) * static_cast<std::size_t>(std::max(0, c.speech_dims)))
+    throw Error(c.name + ": its speech features do not cover its frames");
+  if (static_cast<long long>(s.frames) + m.frame_count > limits::kMaxFrames)
+    throw Error(c.name + ": the reference would have more than " + std::to_string(limits::kMaxFrames) + " frames");
+
+  const int offset = s.frames;
+  s.g.clips.push_back({c.name, offset, m.frame_count});
+  s.g.speech.vec().insert(s.g.speech.vec().end(), c.speech.begin(), c.speech.end());
+  const PoseFeatures f = clip_features(m);
+  s.nodes.resize(static_cast<std::size_t>(offset + m.frame_count));
+  mark_key_nodes(s.nodes, offset, c, capture_jump_frames(f.positions, s.params));
+  // Runs end at break nodes (and the clip's end): each frame's threshold from its own run.
+  std::vector<int> run_end(static_cast<std::size_t>(m.frame_count));
+  int end = m.frame_count - 1;
+  for (int i = m.frame_count - 1; i >= 0; --i) {
+    if (s.nodes[static_cast<std::size_t>(offset + i)].kinds & kBreakNode) end = i;
+    run_end[static_cast<std::size_t>(i)] = end;
+  }
+  const std::vector<double> theta = continuity_thresholds(f, run_end, s.params);
+  s.theta.insert(s.theta.end(), theta.begin(), theta.end());
+  s.store->add_clip(f);
+  s.space->add_clip(f);
+  if (c.speech_dims > 0) append_upper_body_speed(f, s.upper_body, s.speed);
+  append_key_junction_poses(m, s.nodes, offset, s.key_poses);
+  s.frames += m.frame_count;
+
+  if (s.g.clips.size() == 1) {
+    s.only = std::move(c.motion);  // one clip: its samples are the graph's, no copy
+  } else {
+    if (!s.rotations) s.start_appending();
+    s.append_samples(m);
+  }
+}
+
+MotionGraph GraphBuild::finish(const BuildProgress& progress) {
+  State& s = *s_;
+  if (s.g.clips.empty()) throw Error("graph build: no reference clip given");
+  MotionGraph g = std::move(s.g);
+  g.motion.frame_count = s.frames;
+  if (s.only) {
+    g.motion.rotations = std::move(s.only->rotations);
+    g.motion.translations = std::move(s.only->translations);
+    s.only.reset();
+  } else {
+    g.motion.rotations = finish_samples<glm::dquat>(*s.rotations);
+    g.motion.translations = finish_samples<glm::dvec3>(*s.translations);
+  }
+  if (g.has_speech()) {
+    divide_by_median(s.speed);
+    g.activity = std::move(s.speed);
+  }
+  g.key_poses = std::move(s.key_poses);
+
+  // Natural edges inside continuous runs, then the analysis's.
+  GraphBuilder builder(std::move(s.nodes));
+  for (int f = 0; f + 1 < s.frames; ++f)
     if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
-
-  if (g.has_speech()) g.activity = upper_body_activity(features, upper_body_joints(g.motion.skeleton));
-
+  s.store->finish();
+  s.space->finish();
   ContinuityProgress analysed;
   if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };
-  for (const Transition& t : continuity_analysis(features, run_end, params, analysed))
-    builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  const std::vector<Transition> transitions = continuity_analysis(std::move(*s.space), s.theta, s.params, analysed);
+  for (const Transition& t : transitions) builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
   g.graph = builder.finish();
-  g.key_poses = key_junction_poses(g);
   return g;
+}
+
+MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params, const BuildProgress& progress,
+                        const std::string& spill_folder) {
+  GraphBuild build(params, spill_folder);
+  for (ClipEvents& c : clips) {
+    build.add(std::move(c));
+    c = ClipEvents();  // release the clip's copy early
+  }
+  return build.finish(progress);
 }
 
 }  // namespace gmg

@@ -36,8 +36,8 @@ void Gathered::resolve(int l, std::vector<Candidate>& out) {
     std::size_t sure = 0;
     while (sure < out.size() && out[sure].d < lo) ++sure;
     ties_.clear();
-    std::size_t end = sure;
-    for (; end < out.size() && out[end].d <= hi; ++end) ties_.emplace_back(space_.exact(l, out[end].r), static_cast<int>(end));
+    for (std::size_t i = sure; i < out.size() && out[i].d <= hi; ++i)
+      ties_.emplace_back(space_.exact(l, out[i].r), static_cast<int>(i));
     std::sort(ties_.begin(), ties_.end(), [&](const std::pair<double, int>& a, const std::pair<double, int>& b) {
       return a.first < b.first || (a.first == b.first && out[static_cast<std::size_t>(a.second)].r <
                                                              out[static_cast<std::size_t>(b.second)].r);

@@ -1,14 +1,15 @@
 #include "graph/continuity.h"
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "engine/core/error.h"
 #include "engine/core/parallel.h"
 #include "graph/neighbours.h"
+#include "graph/pose_space.h"
 #include "graph/pruning.h"
 
 namespace gmg {
@@ -43,7 +44,7 @@ constexpr std::size_t kKeptSurvivors = 16;
 // slots (and whether the frame had more), or with stride 0 (no bound) every one in a list.
 struct Survivors {
   std::size_t stride = 0;
-  std::vector<Candidate> slots;       // frame l's at [l * stride, l * stride + count[l])
+  std::vector<Candidate> slots;  // frame l's at [l * stride, l * stride + count[l])
   std::vector<std::uint8_t> count;
   std::vector<std::uint8_t> truncated;
   std::vector<std::vector<Candidate>> lists;  // stride 0
@@ -112,10 +113,18 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
                                             const GraphParams& params, const ContinuityProgress& progress) {
   const int n = f.frame_count();
   if (static_cast<int>(run_end.size()) != n) throw Error("continuity_analysis: run_end has the wrong size");
+  if (n < 2) return {};
+  const std::vector<double> theta = continuity_thresholds(f, run_end, params);
+  return continuity_analysis(neighbours::PoseSpace(f, params), theta, params, progress);
+}
+
+std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const std::vector<double>& theta,
+                                            const GraphParams& params, const ContinuityProgress& progress) {
+  const int n = space.frames();
+  if (static_cast<int>(theta.size()) != n) throw Error("continuity_analysis: theta has the wrong size");
   std::vector<Transition> edges;
   if (n < 2) return edges;
-  const std::vector<double> theta = continuity_thresholds(f, run_end, params);
-  const CandidateSearch search(f, theta, params, neighbour_search_for(params, n));
+  const CandidateSearch search(std::move(space), theta, params, neighbour_search_for(params, n));
 
   // 1. Every frame's candidates and pruning 1, in parallel and in the tree's order (each thread
   //    takes a run of neighbouring frames, whose searches read the same part of the tree).
@@ -147,6 +156,7 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
       survivors.truncated[fl] = w.kept.size() > m ? 1 : 0;
     }
     const std::size_t done = ++chunks_done;
+    if (done % 64 == 0) search.store().release();  // the positions read in double, when spilled
     if (progress && worker == 0) progress(static_cast<int>(std::min(static_cast<std::size_t>(n), done * kChunk)), n);
   });
 
@@ -168,6 +178,7 @@ std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::ve
     }
     // This frame's edges join the index after all of its candidates were tested.
     for (std::size_t e = first; e < edges.size(); ++e) index.add(l, edges[e].to);  // ascending
+    if (l % 32768 == 32767) search.store().release();
   }
   if (progress) progress(n, n);
   return edges;

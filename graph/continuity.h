@@ -29,4 +29,12 @@ using ContinuityProgress = std::function<void(int, int)>;
 std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::vector<int>& run_end,
                                             const GraphParams& params, const ContinuityProgress& progress = {});
 
+namespace neighbours {
+class PoseSpace;
+}
+// The same over a pose space built clip by clip (graph/pose_space.h, graph/build.cpp), with every
+// frame's threshold already known (continuity_thresholds of each clip).
+std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const std::vector<double>& theta,
+                                            const GraphParams& params, const ContinuityProgress& progress = {});
+
 }  // namespace gmg

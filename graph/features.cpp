@@ -1,5 +1,9 @@
 #include "graph/features.h"
 
+#include <algorithm>
+
+#include "engine/core/error.h"
+
 namespace gmg {
 
 PoseFeatures pose_features(const Motion& m) {
@@ -31,6 +35,64 @@ double pose_distance(const PoseFeatures& a, int l, const PoseFeatures& b, int r,
 
 double pose_distance(const PoseFeatures& f, int l, int r, const GraphParams& params) {
   return pose_distance(f, l, f, r, params);
+}
+
+FeatureStore::FeatureStore(int dims, const std::string& spill_folder, std::size_t memory_limit)
+    : dims_(dims), spill_(spill_folder, memory_limit) {}
+
+void FeatureStore::add_clip(const PoseFeatures& clip) {
+  if (clip.positions.rows() != dims_) throw Error("FeatureStore: a clip with another joint count");
+  if (clip.frame_count() < 2) throw Error("FeatureStore: a clip needs at least 2 frames");
+  starts_.push_back(frames_);
+  spill_.append(clip.positions.data(), static_cast<std::size_t>(clip.positions.size()) * sizeof(double));
+  frames_ += clip.frame_count();
+}
+
+void FeatureStore::finish() {
+  bytes_ = spill_.finish();
+  positions_ = reinterpret_cast<const double*>(bytes_.data);
+}
+
+bool FeatureStore::clip_start(int f) const { return std::binary_search(starts_.begin(), starts_.end(), f); }
+
+std::unique_ptr<FeatureStore> FeatureStore::of(const PoseFeatures& f) {
+  const int n = f.frame_count();
+  const Eigen::Index dims = f.positions.rows();
+  auto store = std::make_unique<FeatureStore>(static_cast<int>(dims));
+  // Clip starts: where the velocity is not the step from the previous frame.
+  int start = 0;
+  for (int i = 1; i <= n; ++i) {
+    const bool step = i < n && f.velocities.col(i) == f.positions.col(i) - f.positions.col(i - 1);
+    if (step) continue;
+    if (i < n && !(i + 1 < n && f.velocities.col(i) == f.positions.col(i + 1) - f.positions.col(i)))
+      throw Error("pose features: the velocity of frame " + std::to_string(i) + " is not a difference of positions");
+    PoseFeatures clip;
+    clip.positions = f.positions.middleCols(start, i - start);
+    clip.velocities = f.velocities.middleCols(start, i - start);
+    if (clip.frame_count() < 2 || clip.velocities.col(0) != clip.positions.col(1) - clip.positions.col(0))
+      throw Error("pose features: the velocity of frame " + std::to_string(start) +
+                  " is not a difference of positions");
+    store->add_clip(clip);
+    start = i;
+  }
+  store->finish();
+  return store;
+}
+
+double FeatureStore::distance(int l, int r, const GraphParams& params) const {
+  const Eigen::Map<const Eigen::VectorXd> pl(position(l), dims_), pr(position(r), dims_);
+  const auto [al, bl] = velocity_frames(l);
+  const auto [ar, br] = velocity_frames(r);
+  const Eigen::Map<const Eigen::VectorXd> pal(position(al), dims_), pbl(position(bl), dims_);
+  const Eigen::Map<const Eigen::VectorXd> par(position(ar), dims_), pbr(position(br), dims_);
+  thread_local Eigen::VectorXd vl, vr;
+  vl = pal - pbl;
+  vr = par - pbr;
+  return params.lambda_pos * (pl - pr).norm() + params.lambda_vel * (vl - vr).norm();
+}
+
+void FeatureStore::release() const {
+  if (bytes_.file) bytes_.file->release(0, bytes_.file->size());
 }
 
 }  // namespace gmg

@@ -55,6 +55,12 @@ struct Sixteen {
     return s;
   }
   void store(float* p) const { std::memcpy(p, part, sizeof part); }
+  // x - y, lane by lane.
+  static Sixteen difference(const Sixteen& x, const Sixteen& y) {
+    Sixteen s;
+    for (int i = 0; i < kParts; ++i) s.part[i] = x.part[i] - y.part[i];
+    return s;
+  }
   // this += (x - y)^2, lane by lane.
   void add_square_of_difference(const Sixteen& x, const Sixteen& y) {
     for (int i = 0; i < kParts; ++i) {

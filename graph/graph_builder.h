@@ -14,6 +14,8 @@ namespace gmg {
 class GraphBuilder {
  public:
   explicit GraphBuilder(int frames);
+  // With the nodes already labelled.
+  explicit GraphBuilder(std::vector<NodeInfo> nodes) : nodes_(std::move(nodes)) {}
 
   int frame_count() const { return static_cast<int>(nodes_.size()); }
   NodeInfo& node(int frame) { return nodes_.at(static_cast<std::size_t>(frame)); }

@@ -89,6 +89,20 @@ class Writer {
     bytes(zeros, (kAlign - (kHeader + size_) % kAlign) % kAlign);
     bytes(data, n * sizeof(T));
   }
+  // The same for samples, a few MB at a time, giving each piece's pages back after it when they
+  // are read from a file's mapping (the spilled motion of a long build: engine/core/spill.h).
+  template <typename T>
+  void aligned(const Samples<T>& values) {
+    pod<std::uint64_t>(values.size());
+    static const char zeros[kAlign] = {};
+    bytes(zeros, (kAlign - (kHeader + size_) % kAlign) % kAlign);
+    constexpr std::size_t kPiece = (std::size_t{4} << 20) / sizeof(T);
+    for (std::size_t i = 0; i < values.size(); i += kPiece) {
+      const std::size_t m = std::min(kPiece, values.size() - i);
+      bytes(values.data() + i, m * sizeof(T));
+      values.release_pages(i, m);
+    }
+  }
   std::uint64_t size() const { return size_; }
   std::uint64_t checksum() const { return sum_.value(); }
 
@@ -304,8 +318,8 @@ void write_payload(Writer& w, const MotionGraph& g) {
   }
   w.pod(g.motion.fps);
   w.pod<std::int32_t>(g.motion.frame_count);
-  w.aligned(g.motion.rotations.data(), g.motion.rotations.size());
-  w.aligned(g.motion.translations.data(), g.motion.translations.size());
+  w.aligned(g.motion.rotations);
+  w.aligned(g.motion.translations);
 
   // Nodes: every frame's kinds, then the labels of the keyword nodes only.
   const std::size_t n = static_cast<std::size_t>(g.frame_count());
@@ -482,8 +496,8 @@ void read_motion(Reader& r, const Source& src, Motion& m) {
   });
   if (bad != expected)
     r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
-  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner);
-  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner);
+  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner, src.file);
+  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner, src.file);
 }
 
 // Natural edges are the capture's own frame steps: to the next frame, with weight 0.

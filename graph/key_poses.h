@@ -26,4 +26,9 @@ Eigen::VectorXd junction_pose(const MotionGraph& g, int f);
 // junction_pose of every key frame (MotionGraph::key_frames order), one after another.
 std::vector<double> key_junction_poses(const MotionGraph& g);
 
+// The same for one clip of a graph being built: its motion, and the nodes of its frames
+// (nodes[offset + i] is its frame i); its key frames' poses appended to `out` in frame order.
+void append_key_junction_poses(const Motion& clip, const std::vector<NodeInfo>& nodes, int offset,
+                               std::vector<double>& out);
+
 }  // namespace gmg

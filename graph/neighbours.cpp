@@ -27,12 +27,16 @@ int candidate_limit(const GraphParams& params) {
   return static_cast<int>(std::min<long long>(k, std::numeric_limits<int>::max()));
 }
 
-CandidateSearch::CandidateSearch(const PoseFeatures& features, const std::vector<double>& theta,
+CandidateSearch::CandidateSearch(neighbours::PoseSpace&& space, const std::vector<double>& theta,
                                  const GraphParams& params, NeighbourSearch search) {
-  if (search == NeighbourSearch::Auto) search = neighbour_search_for(params, features.frame_count());
+  if (search == NeighbourSearch::Auto) search = neighbour_search_for(params, space.frames());
   const long checks = search == NeighbourSearch::Exact ? 0 : params.ann_checks;
-  tree_ = std::make_unique<neighbours::CandidateTree>(features, theta, params, checks);
+  tree_ = std::make_unique<neighbours::CandidateTree>(std::move(space), theta, params, checks);
 }
+
+CandidateSearch::CandidateSearch(const PoseFeatures& features, const std::vector<double>& theta,
+                                 const GraphParams& params, NeighbourSearch search)
+    : CandidateSearch(neighbours::PoseSpace(features, params), theta, params, search) {}
 
 CandidateSearch::~CandidateSearch() = default;
 
@@ -47,6 +51,8 @@ void CandidateSearch::find(int l, CandidateScratch& scratch, std::vector<Candida
 float CandidateSearch::error(float d) const { return tree_->space().error(d); }
 
 double CandidateSearch::distance(int l, int r) const { return tree_->space().exact(l, r); }
+
+const FeatureStore& CandidateSearch::store() const { return tree_->space().store(); }
 
 std::vector<std::vector<int>> candidate_sets(const PoseFeatures& features, const std::vector<double>& theta,
                                              const GraphParams& params, NeighbourSearch search) {

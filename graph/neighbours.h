@@ -26,7 +26,8 @@ namespace gmg {
 
 namespace neighbours {
 class CandidateTree;
-}
+class PoseSpace;
+}  // namespace neighbours
 
 // The search `params.neighbours` asks for with `frames` frames (Auto resolved).
 NeighbourSearch neighbour_search_for(const GraphParams& params, int frames);
@@ -46,10 +47,10 @@ struct Candidate {
 
 // One thread's working memory for CandidateSearch::find (reused across calls).
 struct CandidateScratch {
-  std::vector<std::pair<float, int>> open;  // tree nodes to visit, by lower bound (a min-heap)
-  std::vector<float> kth;                   // the k smallest member distances so far (a max-heap)
-  std::vector<Candidate> items;             // the members so far
-  std::vector<std::pair<double, int>> ties; // members within float error of the k-th, in double
+  std::vector<std::pair<float, int>> open;   // tree nodes to visit, by lower bound (a min-heap)
+  std::vector<float> kth;                    // the k smallest member distances so far (a max-heap)
+  std::vector<Candidate> items;              // the members so far
+  std::vector<std::pair<double, int>> ties;  // members within float error of the k-th, in double
 };
 
 // K_l of any frame, from any thread (const; each thread brings its own scratch). `features`,
@@ -57,7 +58,10 @@ struct CandidateScratch {
 class CandidateSearch {
  public:
   // theta[l] is frame l's threshold (graph/continuity.h); search is Exact or Approximate (Auto is
-  // resolved with neighbour_search_for).
+  // resolved with neighbour_search_for). The search takes the pose space (graph/pose_space.h).
+  CandidateSearch(neighbours::PoseSpace&& space, const std::vector<double>& theta, const GraphParams& params,
+                  NeighbourSearch search);
+  // The same over features in memory.
   CandidateSearch(const PoseFeatures& features, const std::vector<double>& theta, const GraphParams& params,
                   NeighbourSearch search);
   ~CandidateSearch();
@@ -75,6 +79,8 @@ class CandidateSearch {
   float error(float d) const;
   // d(l, r) in double (graph/features.h).
   double distance(int l, int r) const;
+  // The feature store the distances come from.
+  const FeatureStore& store() const;
 
  private:
   std::unique_ptr<neighbours::CandidateTree> tree_;

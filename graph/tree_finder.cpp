@@ -13,9 +13,9 @@ static_assert(CandidateTree::kLeaf % kLanes == 0, "a leaf is a whole number of v
 
 }  // namespace
 
-CandidateTree::CandidateTree(const PoseFeatures& f, const std::vector<double>& theta, const GraphParams& params,
+CandidateTree::CandidateTree(PoseSpace&& space, const std::vector<double>& theta, const GraphParams& params,
                              long max_checks)
-    : space_(f, params),
+    : space_(std::move(space)),
       theta_(theta),
       allowed_{params.l_pn, params.exclude_near},
       k_(static_cast<std::size_t>(candidate_limit(params))),
@@ -145,7 +145,7 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
       if (lb[i] > g.radius()) continue;
       const int r = order_[static_cast<std::size_t>(node->begin + i)];
       if (!allowed_(l, r)) continue;
-      const float d = space_.approx_slots(slot, node->begin + i);
+      const float d = space_.approx(l, r);
       if (d > g.radius() || !space_.within(l, r, d, theta)) continue;
       g.add(d, r);
       if (k_ == 0) continue;

@@ -7,19 +7,19 @@
 
 #include <vector>
 
+#include "graph/candidate_gathering.h"
 #include "graph/features.h"
 #include "graph/neighbours.h"
 #include "graph/params.h"
-#include "graph/candidate_gathering.h"
 #include "graph/pose_space.h"
 
 namespace gmg::neighbours {
 
 class CandidateTree {
  public:
-  // max_checks 0: searched to the end. theta, features and params must outlive the tree.
-  CandidateTree(const PoseFeatures& features, const std::vector<double>& theta, const GraphParams& params,
-                long max_checks);
+  // max_checks 0: searched to the end. theta and params must outlive the tree (and the space's
+  // feature store).
+  CandidateTree(PoseSpace&& space, const std::vector<double>& theta, const GraphParams& params, long max_checks);
 
   int frames() const { return space_.frames(); }
   // Frames in tree order (slot s holds frame order()[s]).
@@ -50,7 +50,7 @@ class CandidateTree {
   Allowed allowed_;
   std::size_t k_;
   long max_checks_;
-  std::vector<int> order_;      // frames in tree order
+  std::vector<int> order_;  // frames in tree order
   std::vector<Node> nodes_;
   std::vector<float> lo_, hi_;  // every node's box, PoseSpace::kProjections floats a node
   std::vector<float> blocks_;   // per leaf, PoseSpace::kProjections rows of kLeaf projections

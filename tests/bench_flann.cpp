@@ -330,9 +330,11 @@ Space proj_space(const Reference& ref) {
   const int n = ps.frames();
   s.data.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(s.dims));
   for (int l = 0; l < n; ++l)
-    for (int i = 0; i < s.dims; ++i)
+    for (int i = 0; i < s.dims; ++i) {
+      const int row = rows[static_cast<std::size_t>(i)];
       s.data[static_cast<std::size_t>(l) * static_cast<std::size_t>(s.dims) + static_cast<std::size_t>(i)] =
-          proj(rows[static_cast<std::size_t>(i)], l) * (rows[static_cast<std::size_t>(i)] < 8 ? ps.lambda_pos() : ps.lambda_vel());
+          proj(row, l) * (row < 8 ? ps.lambda_pos() : ps.lambda_vel());
+    }
   s.build_s = t.wall();
   return s;
 }

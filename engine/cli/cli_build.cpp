@@ -106,7 +106,9 @@ void run_build(const BuildArgs& a) {
   std::shared_ptr<batch::Progress> display;
   const BuildProgress progress = progress_display(a.progress, display);
   std::vector<std::string> warnings;
-  const MotionGraph g = graph_build_from_files(clips, cfg, progress, a.jobs, &warnings);
+  // Hours of reference keep their motion and features in temporary files beside the output.
+  const std::string folder = std::filesystem::path(a.output).parent_path().string();
+  const MotionGraph g = graph_build_from_files(clips, cfg, progress, a.jobs, &warnings, folder.empty() ? "." : folder);
   if (display) display->finish();
   print_warnings(warnings);
   graph_save(a.output, g);

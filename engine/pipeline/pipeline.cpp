@@ -224,35 +224,49 @@ SmplxBody join_bodies(std::vector<SmplxBody>& bodies) {
 }  // namespace
 
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
-                                   const BuildProgress& progress, int jobs, std::vector<std::string>* out_warnings) {
+                                   const BuildProgress& progress, int jobs, std::vector<std::string>* out_warnings,
+                                   const std::string& spill_folder) {
   config_validate(config);
   const text::Lexicon lexicon = lexicon_for(config.graph);
-  std::vector<ClipEvents> inputs(clips.size());
-  std::vector<SmplxBody> bodies(clips.size());
-  std::vector<std::vector<std::string>> warnings(clips.size());
-  std::mutex m;
-  long done = 0;
-  // Clips are independent: read them on several threads, each into its own slot.
-  parallel_for(clips.size(), worker_count(jobs, clips.size()), [&](std::size_t i, int) {
-    std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
-    try {
-      inputs[i] = naming_memory_errors(clips[i].motion, "reading the reference clip", [&] {
-        return read_reference(clips[i], config, lexicon, bodies[i], warnings[i]);
-      });
-    } catch (...) {
-      error = std::current_exception();
-    }
-    {
-      const std::lock_guard<std::mutex> lock(m);
-      if (progress) progress("read", ++done, static_cast<long>(clips.size()));
-    }
-    if (error) std::rethrow_exception(error);
-  });
-  if (out_warnings)
-    for (const std::vector<std::string>& w : warnings) out_warnings->insert(out_warnings->end(), w.begin(), w.end());
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
-  MotionGraph g = naming_memory_errors(what, "building the graph",
-                                       [&] { return graph_build(std::move(inputs), config.graph, progress); });
+  GraphBuild build(config.graph, spill_folder);
+  std::vector<SmplxBody> bodies(clips.size());
+  const int workers = worker_count(jobs, clips.size());
+  long done = 0;
+  // A wave of `workers` clips is read on as many threads, each into its own slot; then they join
+  // the graph in order and the next wave is read.
+  for (std::size_t first = 0; first < clips.size(); first += static_cast<std::size_t>(workers)) {
+    const std::size_t count = std::min(clips.size() - first, static_cast<std::size_t>(workers));
+    std::vector<ClipEvents> inputs(count);
+    std::vector<std::vector<std::string>> warnings(count);
+    std::mutex m;
+    parallel_for(count, workers, [&](std::size_t i, int) {
+      const ReferenceFiles& clip = clips[first + i];
+      std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
+      try {
+        inputs[i] = naming_memory_errors(clip.motion, "reading the reference clip", [&] {
+          return read_reference(clip, config, lexicon, bodies[first + i], warnings[i]);
+        });
+      } catch (...) {
+        error = std::current_exception();
+      }
+      {
+        const std::lock_guard<std::mutex> lock(m);
+        if (progress) progress("read", ++done, static_cast<long>(clips.size()));
+      }
+      if (error) std::rethrow_exception(error);
+    });
+    if (out_warnings)
+      for (const std::vector<std::string>& w : warnings) out_warnings->insert(out_warnings->end(), w.begin(), w.end());
+    for (ClipEvents& c : inputs) {
+      naming_memory_errors(what, "building the graph", [&] {
+        build.add(std::move(c));
+        return 0;
+      });
+      c = ClipEvents();  // release the clip's copy early
+    }
+  }
+  MotionGraph g = naming_memory_errors(what, "building the graph", [&] { return build.finish(progress); });
   g.body = join_bodies(bodies);
   return g;
 }

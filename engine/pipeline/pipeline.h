@@ -103,13 +103,16 @@ struct ReferenceFiles {
 };
 
 // Reads, analyses and joins the clips into one graph, in the order given. Clips are read by up
-// to `jobs` threads (0: every core); a problem names the first clip (in order) that has one.
-// Warnings (each naming its files: decoder damage, a clip whose audio and motion durations
-// differ by more than kMaxReferenceDurationMismatchS) are added to *out_warnings in clip order,
-// when it is given.
+// to `jobs` threads (0: every core), that many at a time, and each joins the graph as soon as it
+// and the ones before it are read (graph/build.h GraphBuild), so memory holds a few clips, not
+// all; past a limit their motion and features go to temporary files in `spill_folder` ("" keeps
+// them in memory). A problem names the first clip (in order) that has one. Warnings (each naming
+// its files: decoder damage, a clip whose audio and motion durations differ by more than
+// kMaxReferenceDurationMismatchS) are added to *out_warnings in clip order, when it is given.
 MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, const Config& config,
                                    const BuildProgress& progress = {}, int jobs = 1,
-                                   std::vector<std::string>* out_warnings = nullptr);
+                                   std::vector<std::string>* out_warnings = nullptr,
+                                   const std::string& spill_folder = "");
 
 // A reference clip in memory (the Python module's arrays): analysed exactly as a clip of files.
 struct ReferenceClip {

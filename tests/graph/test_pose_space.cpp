@@ -1,29 +1,35 @@
-// The candidate search's pose space (graph/pose_space.h): single-precision distances summed in one
-// fixed order whatever the vector width, within their stated error of d, and projections that
-// bound d from below.
+// The candidate search's pose space (graph/pose_space.h) and the feature store under it
+// (graph/features.h): single-precision distances summed in one fixed order whatever the vector
+// width, within their stated error of d, projections that bound d from below, and distances in
+// double that are pose_distance's bit for bit.
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "engine/core/error.h"
 #include "graph/pose_space.h"
 
 namespace gmg {
 namespace {
 
-// Features of n frames in `dims` dimensions, random but correlated across frames.
-PoseFeatures random_features(int dims, int n, unsigned seed) {
+// Features of n frames in `dims` dimensions, random but correlated across frames, in clips that
+// start at `starts` (each a clip's velocities as pose_features gives them).
+PoseFeatures random_features(int dims, int n, unsigned seed, const std::vector<int>& starts = {0}) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   PoseFeatures f;
   f.positions.resize(dims, n);
   f.velocities.resize(dims, n);
   for (int i = 0; i < n; ++i)
-    for (int d = 0; d < dims; ++d) {
-      f.positions(d, i) = 10.0 * std::sin(0.01 * i * (d + 1)) + normal(rng);
-      f.velocities(d, i) = 0.3 * normal(rng);
-    }
+    for (int d = 0; d < dims; ++d) f.positions(d, i) = 10.0 * std::sin(0.01 * i * (d + 1)) + normal(rng);
+  for (int i = 0; i < n; ++i) {
+    const bool start = std::find(starts.begin(), starts.end(), i) != starts.end();
+    f.velocities.col(i) =
+        start ? f.positions.col(i + 1) - f.positions.col(i) : f.positions.col(i) - f.positions.col(i - 1);
+  }
   return f;
 }
 
@@ -40,31 +46,79 @@ float fixed_order_norm(const std::vector<float>& x, const std::vector<float>& y)
 
 TEST(PoseSpace, FloatDistanceIsSummedInTheFixedOrder) {
   const int dims = 45, n = 50;  // 45 values padded to 48: three rounds of the sixteen sums
-  const PoseFeatures f = random_features(dims, n, 3);
+  const PoseFeatures f = random_features(dims, n, 3, {0, 20});  // two clips
   GraphParams p;
   p.lambda_pos = 1.0;
   p.lambda_vel = 2.0;
   neighbours::PoseSpace space(f, p);
-  space.set_order({});
-  const Eigen::VectorXd mp = f.positions.rowwise().mean(), mv = f.velocities.rowwise().mean();
-  auto centred = [&](const Eigen::MatrixXd& m, const Eigen::VectorXd& mean, int i) {
+  // Positions centred on the mean and rounded to float; velocities the difference of two of them,
+  // the next frame's at a clip start.
+  const Eigen::VectorXd mean = f.positions.rowwise().mean();
+  auto position = [&](int i) {
     std::vector<float> out(48, 0.0f);
-    for (int d = 0; d < dims; ++d) out[static_cast<std::size_t>(d)] = static_cast<float>(m(d, i) - mean(d));
+    for (int d = 0; d < dims; ++d) out[static_cast<std::size_t>(d)] = static_cast<float>(f.positions(d, i) - mean(d));
     return out;
   };
-  for (int l = 0; l < n; l += 7)
+  auto velocity = [&](int i) {
+    const bool start = i == 0 || i == 20;
+    const std::vector<float> a = position(start ? i + 1 : i), b = position(start ? i : i - 1);
+    std::vector<float> out(48);
+    for (std::size_t d = 0; d < out.size(); ++d) out[d] = a[d] - b[d];
+    return out;
+  };
+  for (int l = 0; l < n; l += 3)
     for (int r = 0; r < n; r += 5) {
-      const float expected = 1.0f * fixed_order_norm(centred(f.positions, mp, l), centred(f.positions, mp, r)) +
-                             2.0f * fixed_order_norm(centred(f.velocities, mv, l), centred(f.velocities, mv, r));
+      const float expected =
+          1.0f * fixed_order_norm(position(l), position(r)) + 2.0f * fixed_order_norm(velocity(l), velocity(r));
       EXPECT_TRUE(same_bits(space.approx(l, r), expected)) << l << " " << r;
     }
 }
 
+TEST(FeatureStore, DistanceIsPoseDistanceBitForBitAcrossClips) {
+  const PoseFeatures f = random_features(30, 60, 7, {0, 25, 26 + 10});
+  GraphParams p;
+  p.lambda_vel = 1.5;
+  const auto store = FeatureStore::of(f);
+  EXPECT_EQ(store->frame_count(), 60);
+  EXPECT_TRUE(store->clip_start(25));
+  EXPECT_FALSE(store->clip_start(26));
+  for (int l = 0; l < 60; ++l)
+    for (int r = 0; r < 60; r += 3) {
+      const double expected = pose_distance(f, l, r, p);
+      const double got = store->distance(l, r, p);
+      EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << l << " " << r;
+    }
+}
+
+TEST(FeatureStore, RefusesVelocitiesThatAreNotPositionDifferences) {
+  PoseFeatures f = random_features(6, 10, 1);
+  f.velocities(2, 4) += 1e-9;
+  EXPECT_THROW(FeatureStore::of(f), Error);
+}
+
+TEST(FeatureStore, SpilledPositionsGiveTheSameDistances) {
+  const PoseFeatures f = random_features(12, 40, 9, {0, 15});
+  GraphParams p;
+  const auto memory = FeatureStore::of(f);
+  FeatureStore spilled(12, ::testing::TempDir(), 1000);  // the second clip crosses 1000 bytes
+  PoseFeatures a, b;
+  a.positions = f.positions.leftCols(15);
+  a.velocities = f.velocities.leftCols(15);
+  b.positions = f.positions.rightCols(25);
+  b.velocities = f.velocities.rightCols(25);
+  spilled.add_clip(a);
+  spilled.add_clip(b);
+  spilled.finish();
+  EXPECT_TRUE(spilled.spilled());
+  EXPECT_FALSE(memory->spilled());
+  for (int l = 0; l < 40; ++l)
+    for (int r = 0; r < 40; ++r) EXPECT_EQ(spilled.distance(l, r, p), memory->distance(l, r, p));
+}
+
 TEST(PoseSpace, FloatDistanceWithinItsErrorAndBoundedBelowByTheProjections) {
-  const PoseFeatures f = random_features(75, 400, 5);
+  const PoseFeatures f = random_features(75, 400, 5, {0, 150});
   GraphParams p;
   neighbours::PoseSpace space(f, p);
-  space.set_order({});
   EXPECT_LE(space.position_dims(), 8);
   EXPECT_LE(space.velocity_dims(), 8);
   for (int l = 0; l < 400; l += 13)
