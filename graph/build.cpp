@@ -28,10 +28,6 @@ std::vector<int> MotionGraph::key_frames() const {
 
 namespace {
 
-// The motion's rotations (or translations) past this many bytes go to the spill file: an hour of a
-// 55-joint reference is 190 MB of rotations and 140 MB of translations.
-constexpr std::size_t kMotionInMemory = std::size_t{256} << 20;
-
 // The pose features of a clip, computed a piece at a time: pose_features of a whole hour holds
 // several copies of it (forward kinematics, its transpose, the velocities). A piece starts one
 // frame early so its first velocity is the clip's (v_t = p_t - p_{t-1}); the values are those of
@@ -86,6 +82,7 @@ Samples<T> finish_samples(SpillFile& spill) {
 struct GraphBuild::State {
   GraphParams params;
   std::string spill_folder;
+  std::size_t memory_limit = 0;
   std::string first_name;
   MotionGraph g;
   std::optional<Motion> only;  // the first clip's samples, moved in, while it is the only one
@@ -96,7 +93,8 @@ struct GraphBuild::State {
   std::vector<NodeInfo> nodes;
   std::vector<float> speed;
   std::vector<int> upper_body;
-  std::vector<double> key_poses;
+  std::vector<double> clip_key_poses;
+  std::unique_ptr<SpillFile> key_poses;  // 6 values a joint a key node: 0.7 GB at 19 h of 55 joints
   int frames = 0;
 
   void check(const ClipEvents& c) const {
@@ -111,8 +109,8 @@ struct GraphBuild::State {
 
   // The samples so far into the spill files (from the second clip on, the motion is appended).
   void start_appending() {
-    rotations = std::make_unique<SpillFile>(spill_folder, kMotionInMemory);
-    translations = std::make_unique<SpillFile>(spill_folder, kMotionInMemory);
+    rotations = std::make_unique<SpillFile>(spill_folder, memory_limit);
+    translations = std::make_unique<SpillFile>(spill_folder, memory_limit);
     if (only) {
       append_samples(*only);
       only.reset();
@@ -125,10 +123,12 @@ struct GraphBuild::State {
   }
 };
 
-GraphBuild::GraphBuild(const GraphParams& params, std::string spill_folder) : s_(std::make_unique<State>()) {
+GraphBuild::GraphBuild(const GraphParams& params, std::string spill_folder, std::size_t memory_limit)
+    : s_(std::make_unique<State>()) {
   graph_params_validate(params);
   s_->params = params;
   s_->spill_folder = std::move(spill_folder);
+  s_->memory_limit = memory_limit;
   s_->g.params = params;
 }
 
@@ -142,9 +142,10 @@ void GraphBuild::add(ClipEvents c) {
     s.g.motion = motion_rest(c.motion.skeleton, c.motion.fps, 0);
     s.g.speech_dims = c.speech_dims;
     const int dims = 3 * c.motion.joint_count();
-    s.store = std::make_unique<FeatureStore>(dims, s.spill_folder);
+    s.store = std::make_unique<FeatureStore>(dims, s.spill_folder, s.memory_limit);
     s.space = std::make_unique<neighbours::PoseSpace>(*s.store, s.params);
     s.upper_body = upper_body_joints(c.motion.skeleton);
+    s.key_poses = std::make_unique<SpillFile>(s.spill_folder, s.memory_limit);
   } else {
     s.check(c);
   }
@@ -176,7 +177,9 @@ void GraphBuild::add(ClipEvents c) {
   s.store->add_clip(f);
   s.space->add_clip(f);
   if (c.speech_dims > 0) append_upper_body_speed(f, s.upper_body, s.speed);
-  append_key_junction_poses(m, s.nodes, offset, s.key_poses);
+  s.clip_key_poses.clear();
+  append_key_junction_poses(m, s.nodes, offset, s.clip_key_poses);
+  s.key_poses->append(s.clip_key_poses.data(), s.clip_key_poses.size() * sizeof(double));
   s.frames += m.frame_count;
 
   if (s.g.clips.size() == 1) {
@@ -204,7 +207,7 @@ MotionGraph GraphBuild::finish(const BuildProgress& progress) {
     divide_by_median(s.speed);
     g.activity = std::move(s.speed);
   }
-  g.key_poses = std::move(s.key_poses);
+  g.key_poses = finish_samples<double>(*s.key_poses);
 
   // Natural edges inside continuous runs, then the analysis's.
   GraphBuilder builder(std::move(s.nodes));

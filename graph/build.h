@@ -24,7 +24,11 @@ using BuildProgress = std::function<void(const std::string& stage, long done, lo
 // nodes" and "Edges") and gives the graph. The params are validated first.
 class GraphBuild {
  public:
-  explicit GraphBuild(const GraphParams& params, std::string spill_folder = "");
+  // Past this many bytes an array (the motion's rotations or translations, the key nodes' junction
+  // poses, the double positions of graph/features.h) goes to the spill folder.
+  static constexpr std::size_t kMemoryLimit = std::size_t{256} << 20;
+  explicit GraphBuild(const GraphParams& params, std::string spill_folder = "",
+                      std::size_t memory_limit = kMemoryLimit);
   ~GraphBuild();
   GraphBuild(const GraphBuild&) = delete;
   GraphBuild& operator=(const GraphBuild&) = delete;

@@ -38,12 +38,11 @@ double pose_distance(const PoseFeatures& a, int l, const PoseFeatures& b, int r,
 // pose_features takes them (v_f = p_f - p_{f-1}; at a clip's first frame, the next frame's), so
 // distance() is pose_distance bit for bit with half the memory. The positions stay in memory up
 // to `memory_limit` bytes, then go to a temporary file in `spill_folder` (engine/core/spill.h;
-// "" = memory).
+// "" keeps them all in memory).
 class FeatureStore {
  public:
-  // Past 256 MB of positions (an hour of a 55-joint reference is 1.4 GB of them) they are spilled.
-  static constexpr std::size_t kMemoryLimit = std::size_t{256} << 20;
-  explicit FeatureStore(int dims, const std::string& spill_folder = "", std::size_t memory_limit = kMemoryLimit);
+  // (An hour of a 55-joint reference is 1.4 GB of positions.)
+  explicit FeatureStore(int dims, const std::string& spill_folder = "", std::size_t memory_limit = 0);
 
   // Appends a clip's features (>= 2 frames, pose_features of the clip: velocities as above).
   void add_clip(const PoseFeatures& clip);

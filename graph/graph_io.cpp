@@ -342,7 +342,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
-  w.aligned(g.key_poses.data(), g.key_poses.size());
+  w.aligned(g.key_poses);
   write_body(w, g.body);
 }
 
@@ -383,7 +383,7 @@ void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
     for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a key pose value is not finite");
-  g.key_poses = Samples<double>::view(poses, n, src.owner);
+  g.key_poses = Samples<double>::view(poses, n, src.owner, src.file);
 }
 
 // Reads write_body's section (the face is copied: SmplxBody owns its arrays).

@@ -1,13 +1,16 @@
 // The whole graph construction: clips joined, breaks, natural and unnatural edges.
 #include <cmath>
+#include <filesystem>
 #include <tuple>
 
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/pipeline/pipeline.h"
 #include "graph/build.h"
 #include "graph/continuity.h"
+#include "graph/graph_io.h"
 #include "graph/stats.h"
 #include "tests/graph/fixtures.h"
 #include "tests/test_support.h"
@@ -54,6 +57,32 @@ TEST(Graph, LongClipsGetTheFeaturesOfOnePoseFeaturesCall) {
     direct.emplace_back(t.from, t.to, t.weight);
   ASSERT_GT(direct.size(), 1000u);
   EXPECT_EQ(built, direct);
+}
+
+TEST(Graph, ASpilledBuildWritesTheSameFileAndLeavesNoTemporaryFile) {
+  // Every array spilled (a limit of 0 bytes): the motion, the key poses and the positions are read
+  // back from temporary files, and the graph is the one built in memory.
+  std::vector<ClipEvents> clips = {{"a.bvh", line_motion(wave(300, 0.0)), {10, 40, 70, 200}, {{20, "big"}}},
+                                   {"b.bvh", line_motion(wave(250, 1.0)), {5, 30, 180}, {{50, "big"}}},
+                                   {"c.bvh", line_motion(wave(200, 2.0)), {7, 90}, {}}};
+  const std::string folder = ::testing::TempDir() + "/spilled_build";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  auto files = [&] {
+    int n = 0;
+    for (const auto& e : std::filesystem::directory_iterator(folder)) n += e.is_regular_file() ? 1 : 0;
+    return n;
+  };
+  const MotionGraph in_memory = graph_build(clips, GraphParams{});
+  GraphBuild build(GraphParams{}, folder, 0);
+  for (const ClipEvents& c : clips) build.add(c);
+  // rotations, translations, key poses, positions
+  EXPECT_EQ(files(), 4) << "every array is in a temporary file";
+  const MotionGraph spilled = build.finish();
+  graph_save(folder + "/memory.gmg", in_memory);
+  graph_save(folder + "/spilled.gmg", spilled);
+  EXPECT_EQ(read_file_bytes(folder + "/memory.gmg"), read_file_bytes(folder + "/spilled.gmg"));
+  EXPECT_EQ(files(), 2) << "the temporary files are unlinked once mapped";
 }
 
 TEST(Graph, SkeletonMismatchIsAnError) {
