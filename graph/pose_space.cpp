@@ -26,6 +26,7 @@ void PoseSpace::start() {
   const int dims = store_->dims();
   dims_ = dims;
   padded_ = (dims_ + 15) / 16 * 16;
+  positions_ = RowChunks(static_cast<std::size_t>(padded_));
   lp_ = static_cast<float>(params_.lambda_pos);
   lv_ = static_cast<float>(params_.lambda_vel);
   sum_p_ = Eigen::VectorXd::Zero(dims_);
@@ -38,10 +39,9 @@ void PoseSpace::add_clip(const PoseFeatures& clip) {
   const int m = clip.frame_count();
   if (clip.positions.rows() != dims_) throw Error("PoseSpace: a clip with another joint count");
   if (n_ == 0) mean_p_ = clip.positions.rowwise().mean();
-  positions_.resize((static_cast<std::size_t>(n_) + static_cast<std::size_t>(m)) * static_cast<std::size_t>(padded_),
-                    0.0f);
+  positions_.resize(static_cast<std::size_t>(n_) + static_cast<std::size_t>(m));
   for (int i = 0; i < m; ++i) {
-    float* p = positions_.data() + static_cast<std::size_t>(n_ + i) * static_cast<std::size_t>(padded_);
+    float* p = positions_.row(static_cast<std::size_t>(n_ + i));
     for (int d = 0; d < dims_; ++d) p[d] = static_cast<float>(clip.positions(d, i) - mean_p_(d));
   }
   // (The whole clip's products at once: for a graph of one clip, the same sums as over all frames.)

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "engine/core/row_chunks.h"
 #include "graph/features.h"
 #include "graph/float_lanes.h"
 #include "graph/params.h"
@@ -100,9 +101,7 @@ class PoseSpace {
  private:
   PoseSpace(std::unique_ptr<FeatureStore> owned, const GraphParams& params);
   void start();
-  const float* position(int f) const {
-    return positions_.data() + static_cast<std::size_t>(f) * static_cast<std::size_t>(padded_);
-  }
+  const float* position(int f) const { return positions_.row(static_cast<std::size_t>(f)); }
   // The top principal axes (as columns) of a covariance: as many as hold all but 1e-4 of the
   // variance, at least 2, at most kMaxAxes (and the dimension).
   static Eigen::MatrixXd principal_axes(const Eigen::MatrixXd& covariance);
@@ -113,7 +112,7 @@ class PoseSpace {
   const GraphParams& params_;
   int n_ = 0, dims_ = 0, padded_ = 0, kp_ = 0, kv_ = 0;
   float lp_ = 1, lv_ = 1, abs_error_ = 0;
-  std::vector<float> positions_;  // padded_ floats a frame, frame order
+  RowChunks positions_;  // padded_ floats a frame, frame order
   // Sums for the principal axes: of the positions and velocities, and of their outer products.
   Eigen::VectorXd mean_p_, sum_p_, sum_v_;
   Eigen::MatrixXd outer_p_, outer_v_;

@@ -27,9 +27,10 @@ CandidateTree::CandidateTree(PoseSpace&& space, const std::vector<double>& theta
   space_.set_order(order_);
   // The leaves' projections, dimension-major within each leaf.
   const std::size_t leaves = (static_cast<std::size_t>(n) + kLeaf - 1) / kLeaf;
-  blocks_.assign(leaves * kDims * kLeaf, 0.0f);
+  blocks_ = RowChunks(kDims * kLeaf);
+  blocks_.resize(leaves);
   for (int s = 0; s < n; ++s) {
-    float* block = blocks_.data() + static_cast<std::size_t>(s / kLeaf) * kDims * kLeaf;
+    float* block = blocks_.row(static_cast<std::size_t>(s / kLeaf));
     for (int d = 0; d < kDims; ++d) block[d * kLeaf + s % kLeaf] = space_.projections()(d, s);
   }
 }
@@ -88,7 +89,7 @@ float CandidateTree::box_bound(int node, const float* q) const {
 
 // Each lane a frame, its rows summed in order (PoseSpace::lower_bound_slots).
 void CandidateTree::leaf_bounds(int begin, const float* q, float* out) const {
-  const float* block = blocks_.data() + static_cast<std::size_t>(begin / kLeaf) * kDims * kLeaf;
+  const float* block = blocks_.row(static_cast<std::size_t>(begin / kLeaf));
   for (int c = 0; c < kLeaf; c += kLanes) {
     Floats sp = {}, sv = {};
     for (int d = 0; d < 8; ++d) {

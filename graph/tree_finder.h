@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "engine/core/row_chunks.h"
 #include "graph/candidate_gathering.h"
 #include "graph/features.h"
 #include "graph/neighbours.h"
@@ -53,7 +54,7 @@ class CandidateTree {
   std::vector<int> order_;  // frames in tree order
   std::vector<Node> nodes_;
   std::vector<float> lo_, hi_;  // every node's box, PoseSpace::kProjections floats a node
-  std::vector<float> blocks_;   // per leaf, PoseSpace::kProjections rows of kLeaf projections
+  RowChunks blocks_;            // a row per leaf: PoseSpace::kProjections rows of kLeaf projections
 };
 
 }  // namespace gmg::neighbours

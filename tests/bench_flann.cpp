@@ -11,7 +11,7 @@
 // For each length: a synthetic speaker (engine/synth, 25 joints, seed 3, as bench_graph; audio at
 // 8 kHz, which the motion does not depend on, and dropped at once), its pose features computed a
 // piece at a time as graph_build does (clip_features), breaks from capture jumps as the build marks
-// them, theta from continuity_thresholds, GraphParams defaults (k = 4 * 20 = 80, l_pn 10).
+// them, theta from continuity_thresholds, GraphParams defaults (k = 4 * 32 = 128, l_pn 10).
 //
 // Query frames: `queries` frames in blocks of `block` consecutive frames at random non-overlapping
 // places (seeded, the same for every method of a length); our search is asked for each frame of a
@@ -28,9 +28,9 @@
 //            numbers): N <= d.
 //    knnSearch with k' neighbours and `checks` (for each index and k', checks ascending until the
 //    recall reaches 0.95), then every result r refined as K_l is defined: allowed (r != l, l + 1,
-//    |r - l| > l_pn), N <= theta_l (a cheap reject: N <= d), d(l, r) <= theta_l, the 80 nearest
+//    |r - l| > l_pn), N <= theta_l (a cheap reject: N <= d), d(l, r) <= theta_l, the k nearest
 //    by (d, r), with our finder's own gathering (graph/candidate_gathering.h: d screened in float,
-//    decided in double near theta and the 80th), so the result is exact over FLANN's candidates.
+//    decided in double near theta and the k-th), so the result is exact over FLANN's candidates.
 //    The refinement is part of the query time (and its column); its pose space of the build.
 // Times: index build (for ours the finder's construction: pose space and tree), queries in CPU
 // seconds of the process (every thread) and wall seconds. The fastest setting of each with recall
@@ -462,11 +462,12 @@ void run_length(double hours, const Options& o) {
   const Lists exact = run_ours(ref, 0, 1, exact_row);
   exact_row.recall = 1.0;
   print_row(hours, n, exact_row);
+  const std::size_t bound = static_cast<std::size_t>(candidate_limit(ref.params));
   std::size_t members = 0, full = 0;
-  for (const auto& k : exact) members += k.size(), full += k.size() == 80 ? 1 : 0;
-  std::printf("  exact K_l: %.1f members per query frame on average, %.1f%% of frames have the full 80\n",
+  for (const auto& k : exact) members += k.size(), full += k.size() == bound ? 1 : 0;
+  std::printf("  exact K_l: %.1f members per query frame on average, %.1f%% of frames have the full %zu\n",
               static_cast<double>(members) / static_cast<double>(exact.size()),
-              100.0 * static_cast<double>(full) / static_cast<double>(exact.size()));
+              100.0 * static_cast<double>(full) / static_cast<double>(exact.size()), bound);
   if (o.brute > 0) {
     std::vector<int> pick;
     std::vector<std::size_t> at;
