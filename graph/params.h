@@ -9,11 +9,11 @@
 
 namespace gmg {
 
-// How the candidate transitions of each frame are found (graph/neighbours.h).
+// How the candidate transitions of each frame are found (graph/neighbours.h: one k-d tree search).
 enum class NeighbourSearch {
-  Auto,         // Exact up to GraphParams::exact_frames frames, Approximate above (only speed differs)
-  Exact,        // every pair's distance bounded, the exact candidates (time grows as frames^2)
-  Approximate,  // a k-d tree with at most ann_checks distance evaluations per frame (0: exact)
+  Auto,         // Exact up to GraphParams::exact_frames frames, Approximate above
+  Exact,        // searched to the end: the exact candidates (time per frame grows with the reference)
+  Approximate,  // at most ann_checks frames examined per frame (0: to the end, exact)
 };
 inline constexpr EnumName<NeighbourSearch> kNeighbourSearchNames[] = {
     {NeighbourSearch::Auto, "auto"}, {NeighbourSearch::Exact, "exact"}, {NeighbourSearch::Approximate, "approximate"}};
@@ -46,11 +46,15 @@ struct GraphParams {
   int max_transitions = 4;
   int candidates_per_transition = 32;
   NeighbourSearch neighbours = NeighbourSearch::Auto;
-  // Auto: the exact (tiled) search up to this many frames, the k-d tree above, where the tiled
-  // search's frames^2 time would dominate. Both find the same candidates (the tree up to its
-  // ann_checks budget), so the edges do not jump at this length.
+  // Auto: the search runs to the end up to this many frames (8 min at 30 fps: every reference of
+  // the paper's gets its exact candidates, the same in every build), and within the ann_checks
+  // budget above, where the time of an exact search per frame keeps growing with the reference. The
+  // budgeted search misses few candidates (recall >= 0.95 of the exact pairs, docs/performance.md),
+  // so the edges do not jump at this length.
   int exact_frames = 15000;
-  int ann_checks = 2000;  // Approximate: frames examined per frame at most; 0 = until exact
+  // Approximate: frames examined per frame at most (whole leaves of 16 of the tree, nearest box
+  // first); 0 = until exact.
+  int ann_checks = 2000;
 };
 
 // Throws gmg::Error naming the first key out of range.
