@@ -28,30 +28,6 @@ std::vector<int> MotionGraph::key_frames() const {
 
 namespace {
 
-// The pose features of a clip, computed a piece at a time: pose_features of a whole hour holds
-// several copies of it (forward kinematics, its transpose, the velocities). A piece starts one
-// frame early so its first velocity is the clip's (v_t = p_t - p_{t-1}); the values are those of
-// one pose_features call on the clip.
-PoseFeatures clip_features(const Motion& m) {
-  constexpr int kPiece = 4096;
-  const std::size_t joints = static_cast<std::size_t>(m.joint_count());
-  PoseFeatures out;
-  out.positions.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
-  out.velocities.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
-  for (int first = 0; first < m.frame_count; first += kPiece) {
-    const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
-    Motion piece = motion_rest(m.skeleton, m.fps, to - from);
-    std::copy(m.rotations.begin() + static_cast<std::ptrdiff_t>(from * joints),
-              m.rotations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.rotations.begin());
-    std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
-              m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
-    const PoseFeatures f = pose_features(piece);
-    out.positions.middleCols(first, to - first) = f.positions.rightCols(to - first);
-    out.velocities.middleCols(first, to - first) = f.velocities.rightCols(to - first);
-  }
-  return out;
-}
-
 // Per frame: the mean speed of `joints` (root-relative: the features' positions are, and their
 // velocities are frame steps), appended to `out`; graph-wide it is then divided by its median.
 void append_upper_body_speed(const PoseFeatures& f, const std::vector<int>& joints, std::vector<float>& out) {

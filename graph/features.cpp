@@ -28,6 +28,27 @@ PoseFeatures pose_features(const Motion& m) {
   return f;
 }
 
+PoseFeatures clip_features(const Motion& m) {
+  // A piece starts one frame early so its first velocity is the clip's (v_t = p_t - p_{t-1}).
+  constexpr int kPiece = 4096;
+  const std::size_t joints = static_cast<std::size_t>(m.joint_count());
+  PoseFeatures out;
+  out.positions.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
+  out.velocities.resize(3 * static_cast<Eigen::Index>(joints), m.frame_count);
+  for (int first = 0; first < m.frame_count; first += kPiece) {
+    const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
+    Motion piece = motion_rest(m.skeleton, m.fps, to - from);
+    std::copy(m.rotations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.rotations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.rotations.begin());
+    std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
+              m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
+    const PoseFeatures f = pose_features(piece);
+    out.positions.middleCols(first, to - first) = f.positions.rightCols(to - first);
+    out.velocities.middleCols(first, to - first) = f.velocities.rightCols(to - first);
+  }
+  return out;
+}
+
 double pose_distance(const PoseFeatures& a, int l, const PoseFeatures& b, int r, const GraphParams& params) {
   return params.lambda_pos * (a.positions.col(l) - b.positions.col(r)).norm() +
          params.lambda_vel * (a.velocities.col(l) - b.velocities.col(r)).norm();

@@ -26,6 +26,10 @@ struct PoseFeatures {
 // Features of one clip (velocities restart at its first frame).
 PoseFeatures pose_features(const Motion& m);
 
+// The same computed a few thousand frames at a time: pose_features of a whole hour holds several
+// copies of it (forward kinematics, its transpose, the velocities). Bit for bit pose_features's.
+PoseFeatures clip_features(const Motion& m);
+
 // d(l, r) = lambda_pos * ||p_l - p_r|| + lambda_vel * ||v_l - v_r||: the graph's one pose
 // distance, used for thresholds, edge weights and (in search) junction costs.
 double pose_distance(const PoseFeatures& f, int l, int r, const GraphParams& params);

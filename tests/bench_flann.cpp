@@ -62,32 +62,17 @@
 #include "graph/neighbours.h"
 #include "graph/params.h"
 #include "graph/pose_space.h"
+#include "tests/benchmark_support.h"
 
 using namespace gmg;
 
 namespace {
 
+using bench::median;
+using bench::peak_rss_mb;
+using bench::Timer;
+
 using Lists = std::vector<std::vector<int>>;
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss / 1024.0;
-}
-
-// Wall and process CPU seconds since construction.
-struct Timer {
-  std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();
-  double cpu0 = process_cpu_seconds();
-  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); }
-  double cpu() const { return process_cpu_seconds() - cpu0; }
-};
 
 std::vector<int> parse_ints(const char* s) {
   std::vector<int> out;
@@ -129,29 +114,6 @@ struct Options {
   double cluster_hours = 1;   // k-means and hierarchical indexes up to this length only
   double autotune_hours = 0;  // FLANN's autotuned index up to this length (0: never)
 };
-
-// The reference as graph_build reads it: features a piece at a time (graph/build.cpp's
-// clip_features: a piece starts one frame early so its first velocity is the clip's).
-PoseFeatures clip_features(const Motion& m) {
-  constexpr int kPiece = 4096;
-  PoseFeatures out;
-  const Eigen::Index dims = 3 * static_cast<Eigen::Index>(m.joint_count());
-  out.positions.resize(dims, m.frame_count);
-  out.velocities.resize(dims, m.frame_count);
-  const std::size_t joints = static_cast<std::size_t>(m.joint_count());
-  for (int first = 0; first < m.frame_count; first += kPiece) {
-    const int from = std::max(0, first - 1), to = std::min(m.frame_count, first + kPiece);
-    Motion piece = motion_rest(m.skeleton, m.fps, to - from);
-    std::copy(m.rotations.begin() + static_cast<std::ptrdiff_t>(from * joints),
-              m.rotations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.rotations.begin());
-    std::copy(m.translations.begin() + static_cast<std::ptrdiff_t>(from * joints),
-              m.translations.begin() + static_cast<std::ptrdiff_t>(to * joints), piece.translations.begin());
-    const PoseFeatures f = pose_features(piece);
-    out.positions.middleCols(first, to - first) = f.positions.rightCols(to - first);
-    out.velocities.middleCols(first, to - first) = f.velocities.rightCols(to - first);
-  }
-  return out;
-}
 
 // One row of the table.
 struct Row {
@@ -395,11 +357,6 @@ struct Best {
 // from the query frames to all frames.
 double projected(const Row& r, const Reference& ref) {
   return r.build_s + r.cpu_s * static_cast<double>(ref.features.frame_count()) / static_cast<double>(ref.frames.size());
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 void run_length(double hours, const Options& o) {

@@ -31,6 +31,7 @@
 #include "engine/synth/synth.h"
 #include "graph/build.h"
 #include "graph/stats.h"
+#include "tests/benchmark_support.h"
 #include "tests/test_support.h"
 
 using namespace gmg;
@@ -41,63 +42,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss / 1024.0;
-}
-
-// One run of a child command: wall and CPU seconds, peak resident memory.
-struct Run {
-  double wall = 0, cpu = 0, rss_mb = 0;
-};
-
-// Runs argv (argv[0] is the program's path) with stdout and stderr to /dev/null.
-Run run_command(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) _exit(126);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  rusage u{};
-  if (pid < 0 || wait4(pid, &status, 0, &u) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::fprintf(stderr, "bench_graph: '%s %s' failed\n", args[0].c_str(), args.size() > 1 ? args[1].c_str() : "");
-    std::exit(1);
-  }
-  Run r;
-  r.wall = seconds_since(t0);
-  r.cpu = u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
-  r.rss_mb = u.ru_maxrss / 1024.0;
-  return r;
-}
-
-struct Spread {
-  double min, median, max;
-};
-
-Spread spread(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return {v.front(), v[v.size() / 2], v.back()};
-}
+using bench::CommandRun;
+using bench::peak_rss_mb;
+using bench::run_command;
+using bench::spread;
+using bench::Spread;
+using bench::thread_cpu_seconds;
 
 // Runs a command `runs` times and prints min / median / max of its wall, CPU and memory.
 void whole_command(const char* what, const std::vector<std::string>& args, int runs) {
   std::vector<double> wall, cpu, rss;
   for (int i = 0; i < runs; ++i) {
-    const Run r = run_command(args);
+    const CommandRun r = run_command(args);
     wall.push_back(r.wall);
     cpu.push_back(r.cpu);
     rss.push_back(r.rss_mb);

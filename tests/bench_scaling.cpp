@@ -28,47 +28,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/benchmark_support.h"
 #include "tests/test_support.h"
 
 namespace {
 
-struct Run {
-  double wall = 0, cpu = 0, rss_mb = 0;
-};
-
-// Runs argv (argv[0] is the program's path) with stdout to `out` (or /dev/null) and stderr to
-// /dev/null; exits the benchmark when the command fails.
-Run run_command(const std::vector<std::string>& args, const std::string& out = "/dev/null") {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  std::fflush(stdout);  // or the child's freopen writes this process's pending output again
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen("/dev/null", "w", stderr)) _exit(126);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  rusage u{};
-  if (pid < 0 || wait4(pid, &status, 0, &u) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string line;
-    for (const std::string& a : args) line += a + " ";
-    std::fprintf(stderr, "bench_scaling: '%s' failed\n", line.c_str());
-    std::exit(1);
-  }
-  Run r;
-  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.cpu = u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
-  r.rss_mb = u.ru_maxrss / 1024.0;
-  return r;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using gmg::bench::CommandRun;
+using gmg::bench::median;
+using gmg::bench::run_command;
 
 // A number after "key": in a one-line JSON object.
 double json_number(const std::string& json, const std::string& key) {
@@ -80,7 +47,7 @@ struct Row {
   double seconds = 0;
   double frames = 0, edges = 0, degree = 0, file_mb = 0;
   std::vector<double> wall, cpu, rss;
-  Run reenact;
+  CommandRun reenact;
 };
 
 // Writes the speaker of `seconds` into dir/clips_<tag>/ as clips of at most an hour.
@@ -105,7 +72,7 @@ Row measure(const std::string& dir, double seconds, int joints, int runs, bool r
   const std::string clips = write_speaker(dir, tag, seconds, joints);
   const std::string graph = dir + "/g" + tag + ".gmg";
   for (int i = 0; i < runs; ++i) {
-    const Run r = run_command({GMG_BINARY, "build", "--clips", clips, "-o", graph, "--progress", "none"});
+    const CommandRun r = run_command({GMG_BINARY, "build", "--clips", clips, "-o", graph, "--progress", "none"});
     row.wall.push_back(r.wall);
     row.cpu.push_back(r.cpu);
     row.rss.push_back(r.rss_mb);
