@@ -45,9 +45,15 @@ struct Candidate {
   int r;
 };
 
+// A tree node to visit and the lower bound of d over its box.
+struct OpenNode {
+  float bound;
+  int node;
+};
+
 // One thread's working memory for CandidateSearch::find (reused across calls).
 struct CandidateScratch {
-  std::vector<std::pair<float, int>> open;   // tree nodes to visit, by lower bound (a min-heap)
+  std::vector<OpenNode> open;                // tree nodes to visit, by lower bound (a min-heap)
   std::vector<float> kth;                    // the k smallest member distances so far (a max-heap)
   std::vector<Candidate> items;              // the members so far
   std::vector<std::pair<double, int>> ties;  // members within float error of the k-th, in double

@@ -87,9 +87,11 @@ float CandidateTree::box_bound(int node, const float* q) const {
   return space_.lambda_pos() * std::sqrt(sum8(g)) + space_.lambda_vel() * std::sqrt(sum8(g + 8));
 }
 
-// Each lane a frame, its rows summed in order (PoseSpace::lower_bound_slots).
-void CandidateTree::leaf_bounds(int begin, const float* q, float* out) const {
+// Each lane a frame, its rows summed in order (PoseSpace::lower_bound_slots); bit i set when frame
+// begin + i's bound is within the radius.
+unsigned CandidateTree::leaf_within(int begin, const float* q, float radius) const {
   const float* block = blocks_.row(static_cast<std::size_t>(begin / kLeaf));
+  unsigned bits = 0;
   for (int c = 0; c < kLeaf; c += kLanes) {
     Floats sp = {}, sv = {};
     for (int d = 0; d < 8; ++d) {
@@ -101,8 +103,9 @@ void CandidateTree::leaf_bounds(int begin, const float* q, float* out) const {
       sv += g * g;
     }
     const Floats lb = space_.lambda_pos() * square_root(sp) + space_.lambda_vel() * square_root(sv);
-    std::memcpy(out + c, &lb, sizeof lb);
+    bits |= lanes_at_most(lb, radius) << c;
   }
+  return bits;
 }
 
 void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out) const {
@@ -116,24 +119,24 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
   const float* q = space_.projections().col(slot).data();
   s.open.clear();
   s.kth.clear();
-  auto later = [](const std::pair<float, int>& a, const std::pair<float, int>& b) { return a > b; };
-  s.open.emplace_back(box_bound(0, q), 0);
+  // (Equal bounds leave the heap in an order fixed by the sequence of pushes: the same in every build.)
+  auto later = [](const OpenNode& a, const OpenNode& b) { return a.bound > b.bound; };
+  s.open.push_back({box_bound(0, q), 0});
   long checks = 0;
-  alignas(64) float lb[kLeaf];
   // Best first: from the open node with the lowest bound, down into the nearer child at every
   // level (the farther one waits among the open nodes), then through the leaf reached.
   while (!s.open.empty()) {
     std::pop_heap(s.open.begin(), s.open.end(), later);
-    auto [bound, id] = s.open.back();
+    const OpenNode top = s.open.back();
     s.open.pop_back();
-    if (bound > g.radius()) break;
-    const Node* node = &nodes_[static_cast<std::size_t>(id)];
+    if (top.bound > g.radius()) break;
+    const Node* node = &nodes_[static_cast<std::size_t>(top.node)];
     while (node->left >= 0) {
       float near = box_bound(node->left, q), far = box_bound(node->right, q);
       int near_id = node->left, far_id = node->right;
       if (far < near) std::swap(near, far), std::swap(near_id, far_id);
       if (far <= g.radius()) {
-        s.open.emplace_back(far, far_id);
+        s.open.push_back({far, far_id});
         std::push_heap(s.open.begin(), s.open.end(), later);
       }
       if (near > g.radius()) break;
@@ -141,9 +144,10 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
     }
     if (node->left >= 0) continue;
     checks += node->end - node->begin;
-    leaf_bounds(node->begin, q, lb);
-    for (int i = 0; i < node->end - node->begin; ++i) {
-      if (lb[i] > g.radius()) continue;
+    // The leaf's frames within reach, as bits (most are not).
+    unsigned within = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
+    for (; within != 0; within &= within - 1) {
+      const int i = __builtin_ctz(within);
       const int r = order_[static_cast<std::size_t>(node->begin + i)];
       if (!allowed_(l, r)) continue;
       const float d = space_.approx(l, r);

@@ -42,9 +42,9 @@ class CandidateTree {
 
   int build(int begin, int end);
   float box_bound(int node, const float* q) const;
-  // The lower bounds of the frames in the leaf starting at slot `begin` (kLeaf values, of which
-  // only the leaf's own count).
-  void leaf_bounds(int begin, const float* q, float* out) const;
+  // Which frames of the leaf starting at slot `begin` have a lower bound within `radius`: bit i
+  // for frame begin + i (bits past the leaf's own frames are meaningless).
+  unsigned leaf_within(int begin, const float* q, float radius) const;
 
   PoseSpace space_;
   const std::vector<double>& theta_;
