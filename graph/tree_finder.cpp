@@ -108,6 +108,25 @@ unsigned CandidateTree::leaf_within(int begin, const float* q, float radius) con
   return bits;
 }
 
+// Member r of K_l at float distance d: gathered, and with a bound the k smallest distances so far
+// tracked, since once k are in, nothing past the k-th (plus float error) can belong to K_l.
+void CandidateTree::take(int l, int r, double theta, Gathered& g, CandidateScratch& s) const {
+  if (!allowed_(l, r)) return;
+  const float d = space_.approx(l, r);
+  if (d > g.radius() || !space_.within(l, r, d, theta)) return;
+  g.add(d, r);
+  if (k_ == 0) return;
+  if (s.kth.size() < k_) {
+    s.kth.push_back(d);
+    std::push_heap(s.kth.begin(), s.kth.end());
+  } else if (d < s.kth.front()) {
+    std::pop_heap(s.kth.begin(), s.kth.end());
+    s.kth.back() = d;
+    std::push_heap(s.kth.begin(), s.kth.end());
+  }
+  if (s.kth.size() == k_) g.limit(kth_radius(space_, s.kth.front()));
+}
+
 void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out) const {
   const double theta = theta_[static_cast<std::size_t>(l)];
   Gathered g(space_, k_, space_.radius(theta), s.items, s.ties);
@@ -115,16 +134,21 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
     out.clear();
     return;
   }
-  const int slot = space_.slot(l);
-  const float* q = space_.projections().col(slot).data();
-  s.open.clear();
+  const float* q = space_.projections().col(space_.slot(l)).data();
   s.kth.clear();
+  descend(l, q, theta, g, s);
+  g.resolve(l, out);
+}
+
+// Best first: from the open node with the lowest bound down into the nearer child at every level
+// (the farther one waits among the open nodes), then through the leaf reached, until no open node
+// is within reach or max_checks frames were examined (0: no budget).
+void CandidateTree::descend(int l, const float* q, double theta, Gathered& g, CandidateScratch& s) const {
+  s.open.clear();
   // (Equal bounds leave the heap in an order fixed by the sequence of pushes: the same in every build.)
   auto later = [](const OpenNode& a, const OpenNode& b) { return a.bound > b.bound; };
   s.open.push_back({box_bound(0, q), 0});
   long checks = 0;
-  // Best first: from the open node with the lowest bound, down into the nearer child at every
-  // level (the farther one waits among the open nodes), then through the leaf reached.
   while (!s.open.empty()) {
     std::pop_heap(s.open.begin(), s.open.end(), later);
     const OpenNode top = s.open.back();
@@ -145,30 +169,11 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
     if (node->left >= 0) continue;
     checks += node->end - node->begin;
     // The leaf's frames within reach, as bits (most are not).
-    unsigned within = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
-    for (; within != 0; within &= within - 1) {
-      const int i = __builtin_ctz(within);
-      const int r = order_[static_cast<std::size_t>(node->begin + i)];
-      if (!allowed_(l, r)) continue;
-      const float d = space_.approx(l, r);
-      if (d > g.radius() || !space_.within(l, r, d, theta)) continue;
-      g.add(d, r);
-      if (k_ == 0) continue;
-      // The k smallest member distances: once k are in, nothing past the k-th (plus float error)
-      // can belong to K_l.
-      if (s.kth.size() < k_) {
-        s.kth.push_back(d);
-        std::push_heap(s.kth.begin(), s.kth.end());
-      } else if (d < s.kth.front()) {
-        std::pop_heap(s.kth.begin(), s.kth.end());
-        s.kth.back() = d;
-        std::push_heap(s.kth.begin(), s.kth.end());
-      }
-      if (s.kth.size() == k_) g.limit(kth_radius(space_, s.kth.front()));
-    }
+    for (unsigned within = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
+         within != 0; within &= within - 1)
+      take(l, order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))], theta, g, s);
     if (max_checks_ > 0 && checks >= max_checks_) break;
   }
-  g.resolve(l, out);
 }
 
 }  // namespace gmg::neighbours
