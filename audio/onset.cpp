@@ -296,8 +296,8 @@ void windowed_frame(const float* y, long long a, long long n, long long t, float
   }
   for (int i = 0; i < kNfft; ++i) {
     const long long j = start + i;
-    out[i] = static_cast<float>((j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[j - a])
-                                                  : 0.0);
+    out[i] =
+        static_cast<float>((j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[j - a]) : 0.0);
   }
 }
 
@@ -441,7 +441,8 @@ std::vector<float> rises(const double* S, long long frames, long long stride, do
     std::fill(acc, acc + n, 0.0);
     for (int m = 0; m < kMels; ++m) {
       const double* s = S + m * stride + r0;
-      for (long long r = 0; r < n; ++r) acc[r] += std::max(0.0, std::max(s[r + 1], floor_db) - std::max(s[r], floor_db));
+      for (long long r = 0; r < n; ++r)
+        acc[r] += std::max(0.0, std::max(s[r + 1], floor_db) - std::max(s[r], floor_db));
     }
     for (long long r = 0; r < n; ++r) env[static_cast<std::size_t>(r0 + r + kPad)] = static_cast<float>(acc[r] / kMels);
   }

@@ -82,7 +82,8 @@ TEST(Onsets, ResamplingAsItGoesIsResamplingFirst) {
       const std::vector<float> got = gmg::audio::onset_strength_envelope(a);
       const std::vector<float> want = gmg::audio::onset_strength_envelope(at_onset_rate);
       ASSERT_EQ(got.size(), want.size()) << rate << " Hz, " << seconds << " s";
-      EXPECT_EQ(std::memcmp(got.data(), want.data(), got.size() * sizeof(float)), 0) << rate << " Hz, " << seconds << " s";
+      EXPECT_EQ(std::memcmp(got.data(), want.data(), got.size() * sizeof(float)), 0)
+          << rate << " Hz, " << seconds << " s";
     }
 }
 

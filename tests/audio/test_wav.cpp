@@ -297,7 +297,8 @@ TEST(Wav, EveryFormatDecodesAsTheFormulaBitForBit) {
           le16(d, static_cast<std::uint16_t>(v));
           values.push_back(v / 32768.0);
         } else if (c.tag == 1 && c.bits == 24) {
-          const std::int32_t v = special ? (i % 2 ? -8388608 : 8388607) : static_cast<std::int32_t>(r % 16777216) - 8388608;
+          const std::int32_t v =
+              special ? (i % 2 ? -8388608 : 8388607) : static_cast<std::int32_t>(r % 16777216) - 8388608;
           le24(d, static_cast<std::uint32_t>(v) & 0xFFFFFFu);
           values.push_back(v / 8388608.0);
         } else if (c.tag == 1) {
@@ -341,7 +342,8 @@ TEST(Wav, NotFiniteSampleFarIntoTheFile) {
   f.channels = 2;
   std::string d;
   for (int i = 0; i < 2 * 10000; ++i) f32(d, i == 2 * 9000 + 1 ? std::numeric_limits<float>::infinity() : 0.25f);
-  expect_wav_error(dir, "late.wav", wav(f, d), {"byte " + std::to_string(44 + 4 * (2 * 9000 + 1)), "sample 9000 (channel 1) is infinite"});
+  expect_wav_error(dir, "late.wav", wav(f, d),
+                   {"byte " + std::to_string(44 + 4 * (2 * 9000 + 1)), "sample 9000 (channel 1) is infinite"});
 }
 
 TEST(Wav, SampleRates) {
