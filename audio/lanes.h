@@ -29,6 +29,9 @@ using LaneBits = long long __attribute__((vector_size(kBytes)));
 // A Lanes converted to float (kWidth floats, half a register).
 using LanesF = float __attribute__((vector_size(kBytes / 2)));
 
+// A whole register of floats (2 kWidth), e.g. kWidth complex numbers stored as re, im pairs.
+using Floats = float __attribute__((vector_size(kBytes)));
+
 // The kWidth doubles at p (any alignment).
 inline Lanes load(const double* p) {
   Lanes v;
@@ -50,6 +53,20 @@ inline Lanes load_widened(const float* p) {
   return __builtin_convertvector(v, Lanes);
 #endif
 }
+
+// v in double (exact), through the conversion's intrinsic with AVX and AVX-512 (see load_widened).
+inline Lanes widen(const LanesF& v) {
+#if defined(__AVX512F__)
+  return _mm512_cvtps_pd(v);
+#elif defined(__AVX__)
+  return _mm256_cvtps_pd(v);
+#else
+  return __builtin_convertvector(v, Lanes);
+#endif
+}
+
+// The kWidth doubles at p (any alignment) from v.
+inline void store(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
 
 // mask ? a : b, lane by lane (mask lanes all ones or all zeros, as comparisons give).
 inline Lanes select(const LaneBits& mask, const Lanes& a, const Lanes& b) {
@@ -99,7 +116,38 @@ inline void transpose(Load& load, Store& store, std::index_sequence<I...> rows) 
   (store(static_cast<int>(I), m[I]), ...);
 }
 
+template <std::size_t... K>
+inline void deinterleave(const Floats& v, LanesF& even, LanesF& odd, std::index_sequence<K...>) {
+  even = __builtin_shufflevector(v, v, (2 * K)...);
+  odd = __builtin_shufflevector(v, v, (2 * K + 1)...);
+}
+
+template <std::size_t... K>
+inline void deinterleave_reversed(const Floats& v, LanesF& even, LanesF& odd, std::index_sequence<K...>) {
+  constexpr std::size_t n = sizeof...(K);
+  even = __builtin_shufflevector(v, v, (2 * (n - 1 - K))...);
+  odd = __builtin_shufflevector(v, v, (2 * (n - 1 - K) + 1)...);
+}
+
+template <std::size_t... K>
+inline Lanes reversed(const Lanes& v, std::index_sequence<K...>) {
+  return __builtin_shufflevector(v, v, (sizeof...(K) - 1 - K)...);
+}
+
 }  // namespace detail
+
+// The kWidth pairs of v (re, im, re, im, ...) as their real parts (even) and imaginary parts (odd).
+inline void deinterleave(const Floats& v, LanesF& even, LanesF& odd) {
+  detail::deinterleave(v, even, odd, std::make_index_sequence<kWidth>());
+}
+
+// The same in reverse order: lane l of even and odd from pair kWidth - 1 - l of v.
+inline void deinterleave_reversed(const Floats& v, LanesF& even, LanesF& odd) {
+  detail::deinterleave_reversed(v, even, odd, std::make_index_sequence<kWidth>());
+}
+
+// v's lanes in reverse order.
+inline Lanes reversed(const Lanes& v) { return detail::reversed(v, std::make_index_sequence<kWidth>()); }
 
 // An N x N block, N the elements of V (2, 4, 8 or 16), transposed in registers (log2 N rounds of
 // two-vector shuffles, pairing rows 1, 2, 4, ... apart): load(j) gives row j of the block, and

@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <string>
@@ -44,7 +45,8 @@ double mel_to_hz(double mel) {
   return kFsp * mel;
 }
 
-// One triangular mel filter: weights for FFT bins first .. first + w.size() - 1.
+// One triangular mel filter: weights for FFT bins first .. first + w.size() - 1, each a quarter
+// of librosa's (the spectrogram multiplies them by four times the power, RealFft::power4).
 struct MelBand {
   int first = 0;
   std::vector<double> w;
@@ -76,7 +78,7 @@ std::vector<MelBand> make_mel_bank() {
         if (band.first < 0) band.first = k;
         // Triangles are contiguous: fill any gap (cannot happen) with zeros.
         band.w.resize(static_cast<std::size_t>(k - band.first), 0.0);
-        band.w.push_back(w * enorm);
+        band.w.push_back(w * enorm * 0.25);
       }
     }
     if (band.first < 0) band.first = 0;  // empty band (not at these settings)
@@ -158,37 +160,89 @@ void check_rate(const Audio& audio) {
   }
 }
 
-// The envelope of samples already at 22050 Hz.
-std::vector<float> envelope_at_onset_rate(const std::vector<float>& y);
+// The audio at 22050 Hz a stretch at a time, as the spectrogram reaches it: the samples
+// themselves at that rate, else resample_poly's output computed a few of its blocks at a time
+// into a buffer that keeps only what the frames still to come read (an hour at 16 kHz would be
+// 317 MB at 22050 Hz, written once and read back from memory four times over; the buffer stays
+// in the second-level cache).
+class OnsetSignal {
+ public:
+  // x must outlive the signal.
+  OnsetSignal(const std::vector<float>& x, int rate) : x_(x) {
+    if (rate == kSr) {
+      n_ = static_cast<long long>(x.size());
+      return;
+    }
+    resampler_ = std::make_unique<PolyphaseResampler>(x, rate, kSr);
+    n_ = resampler_->size();
+    block_ = resampler_->block();
+  }
+
+  // Samples at 22050 Hz in all.
+  long long size() const { return n_; }
+
+  // Samples a .. b - 1 (0 <= a <= b <= size(); a never below an earlier call's a, b - a at most
+  // kMaxSpan): a pointer to sample a, valid until the next call.
+  const float* samples(long long a, long long b) {
+    if (!resampler_) return x_.data() + a;
+    if (b > hi_) {
+      const long long more = (b - hi_ + block_ - 1) / block_ * block_;
+      const long long cap = 2 * (kMaxSpan + block_) + 4 * block_;
+      if (buf_.empty()) buf_.resize(static_cast<std::size_t>(cap));
+      if (hi_ - lo_ + more > cap) {
+        // Only a .. hi_ - 1 is read again: moved to the front (at most kMaxSpan + block_ samples).
+        std::memmove(buf_.data(), buf_.data() + (a - lo_), static_cast<std::size_t>(hi_ - a) * sizeof(float));
+        lo_ = a;
+      }
+      const long long count = std::min(more, n_ - hi_);
+      resampler_->compute(hi_, count, buf_.data() + (hi_ - lo_));
+      hi_ += count;
+    }
+    return buf_.data() + (a - lo_);
+  }
+
+  // The span of samples a block of frames reads, at most.
+  static constexpr long long kMaxSpan = 16 * kHop + kNfft;
+
+ private:
+  const std::vector<float>& x_;
+  std::unique_ptr<PolyphaseResampler> resampler_;
+  long long n_ = 0, block_ = 0;
+  std::vector<float> buf_;
+  long long lo_ = 0, hi_ = 0;  // buf_ holds samples lo_ .. hi_ - 1
+};
+
+// The envelope of the signal.
+std::vector<float> envelope_of(OnsetSignal& y);
 
 }  // namespace
 
 std::vector<float> onset_strength_envelope(const Audio& audio) {
   check_rate(audio);
-  if (audio.sample_rate == kSr) return envelope_at_onset_rate(audio.samples);
-  return envelope_at_onset_rate(resample_poly(audio.samples, audio.sample_rate, kSr));
+  OnsetSignal y(audio.samples, audio.sample_rate);
+  return envelope_of(y);
 }
 
 std::vector<float> onset_strength_envelope(Audio&& audio) {
   check_rate(audio);
-  std::vector<float> y =
-      audio.sample_rate == kSr ? std::move(audio.samples) : resample_poly(audio.samples, audio.sample_rate, kSr);
+  std::vector<float> samples = std::move(audio.samples);
   std::vector<float>().swap(audio.samples);
-  return envelope_at_onset_rate(y);
+  OnsetSignal y(samples, audio.sample_rate);
+  return envelope_of(y);
 }
 
 namespace {
 
-// The spectrogram is computed kFrames frames at a time, one frame per lane of kVectors vectors
-// (audio/lanes.h): eight frames in one vector with AVX-512, in two with AVX, four in two with
-// SSE2. Two vectors give each band's sum, and the logarithm's series, two independent chains
-// where one would wait on its own latency.
+// The spectrogram is computed kFrames frames at a time, one frame per lane of two vectors
+// (audio/lanes.h): sixteen frames with AVX-512, eight with AVX, four with SSE2. Two vectors give
+// each band's sum, and the logarithm's series, two independent chains where one would wait on its
+// own latency (with AVX-512 too: one vector of eight frames took 0.3 ms more per minute of audio).
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
 using lanes::select;
 constexpr int kLanes = lanes::kWidth;
-constexpr int kVectors = kLanes >= 8 ? 1 : 2;
+constexpr int kVectors = 2;
 constexpr int kFrames = kVectors * kLanes;
 
 // power_to_db (onset.h) lane by lane. glibc's log10 is a scalar call and was a fifth of the
@@ -227,24 +281,23 @@ double power_to_db(double power) { return power_to_db_lanes(Lanes{} + power)[0];
 
 namespace {
 
-// Frame t of the STFT with center=True, windowed: the signal is zero padded by n_fft / 2 on both
-// sides (librosa 0.10's default pad_mode="constant"), frame t covers
-// y[t * hop - n_fft / 2, t * hop + n_fft / 2).
-void windowed_frame(const std::vector<float>& y, long long t, float* out) {
+// Frame t of the STFT with center=True, windowed: the signal (n samples) is zero padded by
+// n_fft / 2 on both sides (librosa 0.10's default pad_mode="constant"), frame t covers
+// y[t * hop - n_fft / 2, t * hop + n_fft / 2). y points to sample a, and the frame's samples in
+// 0 .. n - 1 are from a on.
+void windowed_frame(const float* y, long long a, long long n, long long t, float* out) {
   const std::vector<double>& win = hann_window();
-  const long long n = static_cast<long long>(y.size());
   const long long start = t * kHop - kNfft / 2;
   if (start >= 0 && start + kNfft <= n) {
-    const float* x = &y[static_cast<std::size_t>(start)];
+    const float* x = y + (start - a);
     for (int i = 0; i < kNfft; ++i)
       out[i] = static_cast<float>(win[static_cast<std::size_t>(i)] * static_cast<double>(x[i]));
     return;
   }
   for (int i = 0; i < kNfft; ++i) {
     const long long j = start + i;
-    out[i] = static_cast<float>((j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] *
-                                                        static_cast<double>(y[static_cast<std::size_t>(j)])
-                                                  : 0.0);
+    out[i] =
+        static_cast<float>((j >= 0 && j < n) ? win[static_cast<std::size_t>(i)] * static_cast<double>(y[j - a]) : 0.0);
   }
 }
 
@@ -258,49 +311,84 @@ void windowed_frame(const std::vector<float>& y, long long t, float* out) {
 // float step at their peaks; against librosa their max |diff| stays 6.7e-6 .. 8.6e-6), with the
 // same onsets.
 struct RealFft {
-  std::vector<double> zr = std::vector<double>(kNfft / 2 + 1), zi = std::vector<double>(kNfft / 2 + 1);
+  static constexpr int kHalf = kNfft / 2;  // 1024
 
-  // e^(-i pi k / 1024), k = 0 .. 1024.
-  static const std::vector<double>& twiddle(bool imaginary) {
-    static const auto make = [](bool im) {
-      std::vector<double> v(kBins);
+  // e^(-i pi k / 1024): real parts wr[k] and imaginary parts wi[k], k = 0 .. 1024, and the same
+  // read backwards (wr_back[k] = wr[1024 - k]), so that both bins of a pair k, 1024 - k load their
+  // factors in ascending k.
+  struct Twiddles {
+    std::vector<double> wr = std::vector<double>(kBins), wi = std::vector<double>(kBins);
+    std::vector<double> wr_back = std::vector<double>(kBins), wi_back = std::vector<double>(kBins);
+    Twiddles() {
       for (int k = 0; k < kBins; ++k) {
         const double a = kPi * k / (0.5 * kNfft);
-        v[static_cast<std::size_t>(k)] = im ? -std::sin(a) : std::cos(a);
+        wr[static_cast<std::size_t>(k)] = std::cos(a);
+        wi[static_cast<std::size_t>(k)] = -std::sin(a);
       }
-      return v;
-    };
-    static const std::vector<double> re = make(false), im = make(true);
-    return imaginary ? im : re;
+      for (int k = 0; k < kBins; ++k) {
+        wr_back[static_cast<std::size_t>(k)] = wr[static_cast<std::size_t>(kHalf - k)];
+        wi_back[static_cast<std::size_t>(k)] = wi[static_cast<std::size_t>(kHalf - k)];
+      }
+    }
+  };
+  static const Twiddles& twiddles() {
+    static const Twiddles t;
+    return t;
   }
 
-  // |X_k|^2 = re^2 + im^2, k = 0 .. 1024, from Z (1024 values) into power.
-  void power(const fftwf_complex* z, double* power) {
-    for (int k = 0; k < kNfft / 2; ++k) {
-      zr[static_cast<std::size_t>(k)] = z[k][0];
-      zi[static_cast<std::size_t>(k)] = z[k][1];
+  // Four times the power, 4 |X_k|^2 = xr^2 + xi^2 below, k = 0 .. 1024, from Z (1024 values, and
+  // room for one more) into power4 (the factor 1/4 is in the mel weights: a power of two, so
+  // w (p / 4) and (w / 4) p are the same double).
+  //
+  // Bins k and r = 1024 - k are computed together, kLanes pairs at a time, from the same two
+  // vectors of Z (Z[k ..] and Z[r ..], the latter reversed as it is loaded): with zr, zi the parts
+  // of Z in double, bin k's terms are er = zr[k] + zr[r], ei = zi[k] - zi[r], orr = zi[k] + zi[r],
+  // oi = zr[r] - zr[k], and bin r's are er, -ei, orr, -oi (the same sums, the differences negated:
+  // IEEE rounding is symmetric, so they are the same values up to the sign of a zero, and so are
+  // the sums and products made from them, whose squares are then the same). Each bin's value is
+  // the formula's, with its twiddle factor, bit for bit:
+  //   xr = er + (wr orr - wi oi),  xi = ei + (wr oi + wi orr),  4 |X|^2 = xr^2 + xi^2.
+  static void power4(fftwf_complex* z, double* power4) {
+    const Twiddles& tw = twiddles();
+    z[kHalf][0] = z[0][0];
+    z[kHalf][1] = z[0][1];
+    const float* zf = &z[0][0];
+    for (int k0 = 0; k0 < kHalf / 2; k0 += kLanes) {
+      const int r0 = kHalf - k0 - (kLanes - 1);  // lane l: k = k0 + l, r = kHalf - k0 - l
+      lanes::Floats vk, vr;
+      std::memcpy(&vk, zf + 2 * k0, sizeof vk);
+      std::memcpy(&vr, zf + 2 * r0, sizeof vr);
+      LanesF kre, kim, rre, rim;
+      lanes::deinterleave(vk, kre, kim);
+      lanes::deinterleave_reversed(vr, rre, rim);
+      const Lanes zkr = lanes::widen(kre), zki = lanes::widen(kim), zrr = lanes::widen(rre), zri = lanes::widen(rim);
+      const Lanes er = zkr + zrr, ei = zki - zri, orr = zki + zri, oi = zrr - zkr;
+      const Lanes wrk = lanes::load(&tw.wr[static_cast<std::size_t>(k0)]);
+      const Lanes wik = lanes::load(&tw.wi[static_cast<std::size_t>(k0)]);
+      const Lanes wrr = lanes::load(&tw.wr_back[static_cast<std::size_t>(k0)]);
+      const Lanes wir = lanes::load(&tw.wi_back[static_cast<std::size_t>(k0)]);
+      const Lanes xr = er + (wrk * orr - wik * oi), xi = ei + (wrk * oi + wik * orr);
+      lanes::store(power4 + k0, xr * xr + xi * xi);
+      // Bin r: er + (wr orr - wi (-oi)) and -ei + (wr (-oi) + wi orr).
+      const Lanes yr = er + (wrr * orr + wir * oi), yi = (wir * orr - wrr * oi) - ei;
+      lanes::store(power4 + r0, lanes::reversed(yr * yr + yi * yi));
     }
-    zr[kNfft / 2] = zr[0];
-    zi[kNfft / 2] = zi[0];
-    const std::vector<double>&wr = twiddle(false), &wi = twiddle(true);
-    for (std::size_t k = 0; k < kBins; ++k) {
-      const std::size_t r = kNfft / 2 - k;
-      // Twice the even and the odd samples' transforms, E and -i O (the halves are taken out once,
-      // as the exact factor 1/4 of the power).
-      const double er = zr[k] + zr[r], ei = zi[k] - zi[r];
-      const double orr = zi[k] + zi[r], oi = zr[r] - zr[k];
-      const double xr = er + (wr[k] * orr - wi[k] * oi), xi = ei + (wr[k] * oi + wi[k] * orr);
-      power[k] = 0.25 * (xr * xr + xi * xi);
-    }
+    // Bin 512, its own partner.
+    const double zr = z[kHalf / 2][0], zi = z[kHalf / 2][1];
+    const double wr = tw.wr[kHalf / 2], wi = tw.wi[kHalf / 2];
+    const double er = zr + zr, ei = zi - zi, orr = zi + zi, oi = zr - zr;
+    const double xr = er + (wr * orr - wi * oi), xi = ei + (wr * oi + wi * orr);
+    power4[kHalf / 2] = xr * xr + xi * xi;
   }
 };
+static_assert((RealFft::kHalf / 2) % kLanes == 0, "whole vectors of bin pairs");
+static_assert((kFrames - 1) * kHop + kNfft <= OnsetSignal::kMaxSpan, "a block's frames within one stretch");
 
 // One plan, a frame's buffers, and the power spectra of kFrames frames.
 struct SpectrogramBlock {
   static constexpr int kBlocks = (kBins + kLanes - 1) / kLanes;
   const fftwf_plan plan = fft_plan();
   FftBuffers fft;
-  RealFft split;
   // rows[l * kRow + k]: frame l's bin k (the last block of kLanes padded with zeros).
   static constexpr int kRow = kBlocks * kLanes;
   std::vector<double> rows = std::vector<double>(static_cast<std::size_t>(kRow * kFrames), 0.0);
@@ -310,16 +398,20 @@ struct SpectrogramBlock {
   std::vector<double> power = std::vector<double>(static_cast<std::size_t>(kRow * kFrames));
 
   // Frames t0 .. t0 + kFrames - 1 (those before `frames`; silence after) into power.
-  void compute(const std::vector<float>& y, long long t0, long long frames) {
+  void compute(OnsetSignal& y, long long t0, long long frames) {
+    const long long n = y.size();
+    const long long first = std::clamp(t0 * kHop - kNfft / 2, 0LL, n);
+    const long long end = std::clamp((std::min(t0 + kFrames, frames) - 1) * kHop + kNfft / 2, first, n);
+    const float* samples = y.samples(first, end);
     for (int l = 0; l < kFrames; ++l) {
       double* row = &rows[static_cast<std::size_t>(l * kRow)];
       if (t0 + l >= frames) {
         std::fill(row, row + kRow, 0.0);
         continue;
       }
-      windowed_frame(y, t0 + l, fft.in);
+      windowed_frame(samples, first, n, t0 + l, fft.in);
       fftwf_execute_dft(plan, reinterpret_cast<fftwf_complex*>(fft.in), fft.out);
-      split.power(fft.out, row);
+      RealFft::power4(fft.out, row);
     }
     for (int b = 0; b < kBlocks; ++b)
       for (int v = 0; v < kVectors; ++v)
@@ -335,29 +427,36 @@ struct SpectrogramBlock {
 // event n_fft / 2 = 2 hops before its centre, so with this shift the rise of a sharp onset at time
 // T lands at about frame T * 22050 / 512, its own frame.) Values below floor_db count as floor_db;
 // the sums run over the bands in order, frame by frame.
-std::vector<float> rises(const std::vector<double>& S, long long frames, long long stride, double floor_db) {
+// The frames are taken kRiseBlock at a time, all bands for each block, so that the block's sums
+// stay in the first-level cache however long the recording.
+std::vector<float> rises(const double* S, long long frames, long long stride, double floor_db) {
   constexpr long long kPad = 1 + kNfft / (2 * kHop);
+  constexpr long long kRiseBlock = 512;
   std::vector<float> env(static_cast<std::size_t>(frames), 0.0f);
   if (frames <= kPad) return env;
   const long long count = frames - kPad;  // envelope frames kPad .. frames - 1
-  std::vector<double> acc(static_cast<std::size_t>(count), 0.0);
-  for (int m = 0; m < kMels; ++m) {
-    const double* s = &S[static_cast<std::size_t>(m * stride)];
-    for (long long r = 0; r < count; ++r)
-      acc[static_cast<std::size_t>(r)] += std::max(0.0, std::max(s[r + 1], floor_db) - std::max(s[r], floor_db));
+  double acc[kRiseBlock];
+  for (long long r0 = 0; r0 < count; r0 += kRiseBlock) {
+    const long long n = std::min(kRiseBlock, count - r0);
+    std::fill(acc, acc + n, 0.0);
+    for (int m = 0; m < kMels; ++m) {
+      const double* s = S + m * stride + r0;
+      for (long long r = 0; r < n; ++r)
+        acc[r] += std::max(0.0, std::max(s[r + 1], floor_db) - std::max(s[r], floor_db));
+    }
+    for (long long r = 0; r < n; ++r) env[static_cast<std::size_t>(r0 + r + kPad)] = static_cast<float>(acc[r] / kMels);
   }
-  for (long long r = 0; r < count; ++r)
-    env[static_cast<std::size_t>(r + kPad)] = static_cast<float>(acc[static_cast<std::size_t>(r)] / kMels);
   return env;
 }
 
-std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
-  const long long frames = 1 + static_cast<long long>(y.size()) / kHop;
+std::vector<float> envelope_of(OnsetSignal& y) {
+  const long long frames = 1 + y.size() / kHop;
   const std::vector<MelBand>& bank = mel_bank();
   // dB, band-major (band m's frames are S[m * stride ...], the stride a whole number of blocks of
   // kFrames frames), so the envelope sums over bands for many frames at once.
   const long long stride = (frames + kFrames - 1) / kFrames * kFrames;
-  std::vector<double> S(static_cast<std::size_t>(stride * kMels));
+  // Every value is written below (the frames past the end as silence): left uninitialised.
+  const std::unique_ptr<double[]> S(new double[static_cast<std::size_t>(stride * kMels)]);
   SpectrogramBlock block;
   // Lanes past the last frame see silence (-100 dB, no more than any real frame's value): they
   // leave the maximum as it is.
@@ -380,7 +479,7 @@ std::vector<float> envelope_at_onset_rate(const std::vector<float>& y) {
   // top_db = 80 below the maximum of the whole spectrogram.
   double max_all = max_db[0];
   for (int l = 1; l < kLanes; ++l) max_all = std::max(max_all, max_db[l]);
-  return rises(S, frames, stride, max_all - 80.0);
+  return rises(S.get(), frames, stride, max_all - 80.0);
 }
 
 }  // namespace

@@ -49,8 +49,9 @@ struct OnsetAnalysis {
 // audio.sample_rate is not positive.
 std::vector<float> onset_strength_envelope(const Audio& audio);
 
-// The same, taking the audio: its samples are released as soon as they are resampled to
-// 22050 Hz, so a long recording is not held twice (an hour at 16 kHz is 230 MB).
+// The same, taking the audio: its samples are released when the envelope is done, not kept by the
+// caller beside the analysis (an hour at 16 kHz is 230 MB). The audio is resampled to 22050 Hz a
+// stretch at a time as the spectrogram reaches it, so the analysis never holds it twice.
 std::vector<float> onset_strength_envelope(Audio&& audio);
 
 // Envelope, peak picking, the raw-strength filter and backtracking.

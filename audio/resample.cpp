@@ -101,8 +101,8 @@ struct Polyphase {
     i0 = (base + p) / up;  // exact
   }
 
-  // Outputs n .. n + kLanes * up - 1 (those below n_out) into y.
-  void tile(long long n, long long n_out, std::vector<float>& y) {
+  // Outputs n .. n + count - 1 (count <= kLanes * up) into out[0 .. count).
+  void tile(long long n, long long count, float* out) {
     long long p = 0, x0 = 0, p_last = 0, x_last = 0;
     first_tap(n + up - 1, p_last, x_last);
     first_tap(n, p, x0);
@@ -183,9 +183,9 @@ struct Polyphase {
       pa = two ? pb : pa;
       ia = two ? ib : ia;
     }
-    if (n + kLanes * up <= n_out) {
+    if (count == kLanes * up) {
       // Blocks of kRowFloats phases x kRowFloats lanes transposed in registers, the rest one by one.
-      float* dst = &y[static_cast<std::size_t>(n)];
+      float* dst = out;
       long long j0 = 0;
       for (; j0 + kRowFloats <= up; j0 += kRowFloats) {
         for (int l0 = 0; l0 < kLanes; l0 += kRowFloats) {
@@ -196,8 +196,8 @@ struct Polyphase {
         for (long long j = j0; j < up; ++j) dst[l * up + j] = yt[static_cast<std::size_t>(j * kLanes + l)];
     } else {
       for (int l = 0; l < kLanes; ++l)
-        for (long long j = 0; j < up && n + l * up + j < n_out; ++j)
-          y[static_cast<std::size_t>(n + l * up + j)] = yt[static_cast<std::size_t>(j * kLanes + l)];
+        for (long long j = 0; j < up && l * up + j < count; ++j)
+          out[l * up + j] = yt[static_cast<std::size_t>(j * kLanes + l)];
     }
   }
 };
@@ -235,14 +235,19 @@ std::vector<double> firwin_kaiser(int numtaps, double cutoff, double beta) {
   return h;
 }
 
-std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate) {
+struct PolyphaseResampler::Impl {
+  std::shared_ptr<const std::vector<double>> filter;
+  Polyphase polyphase;
+  long long n_out;
+};
+
+PolyphaseResampler::PolyphaseResampler(const std::vector<float>& x, int from_rate, int to_rate) {
   if (from_rate <= 0 || to_rate <= 0) {
     throw Error("resample_poly: sample rates must be positive (from " + std::to_string(from_rate) + " to " +
                 std::to_string(to_rate) + ")");
   }
   const long long g = std::gcd(from_rate, to_rate);
   const long long up = to_rate / g, down = from_rate / g;
-  if (up == 1 && down == 1) return x;
   const long long n_in = static_cast<long long>(x.size());
   const long long n_out = (n_in * up + down - 1) / down;  // ceil(n_in * up / down)
 
@@ -256,10 +261,27 @@ std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int
     throw Error("resample_poly: resampling from " + std::to_string(from_rate) + " Hz to " + std::to_string(to_rate) +
                 " Hz needs a filter of " + std::to_string(20 * max_rate + 1) + " taps (at most " +
                 std::to_string(20 * kMaxReducedRate + 1) + ")");
-  const std::shared_ptr<const std::vector<double>> filter = polyphase_filter(up, down);
-  Polyphase r{x, *filter, up, down};
-  std::vector<float> y(static_cast<std::size_t>(n_out));
-  for (long long n = 0; n < n_out; n += Polyphase::kLanes * up) r.tile(n, n_out, y);
+  std::shared_ptr<const std::vector<double>> filter = polyphase_filter(up, down);
+  const std::vector<double>& phases = *filter;
+  impl_.reset(new Impl{std::move(filter), Polyphase{x, phases, up, down}, n_out});
+}
+
+PolyphaseResampler::~PolyphaseResampler() = default;
+
+long long PolyphaseResampler::size() const { return impl_->n_out; }
+
+long long PolyphaseResampler::block() const { return Polyphase::kLanes * impl_->polyphase.up; }
+
+void PolyphaseResampler::compute(long long n, long long count, float* out) {
+  const long long tile = block();
+  for (long long i = 0; i < count; i += tile) impl_->polyphase.tile(n + i, std::min(tile, count - i), out + i);
+}
+
+std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate) {
+  if (from_rate > 0 && from_rate == to_rate) return x;
+  PolyphaseResampler r(x, from_rate, to_rate);
+  std::vector<float> y(static_cast<std::size_t>(r.size()));
+  r.compute(0, r.size(), y.data());
   return y;
 }
 

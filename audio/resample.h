@@ -4,6 +4,7 @@
 // reproducing it here lets the onset detector see the same samples as the librosa reference.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace gmg::audio {
@@ -15,6 +16,30 @@ namespace gmg::audio {
 // rate is not positive or the filter would exceed 3.84 M taps (the larger of
 // the reduced rates above 192000).
 std::vector<float> resample_poly(const std::vector<float>& x, int from_rate, int to_rate);
+
+// resample_poly's output a stretch at a time, for a reader that uses it as it goes (the onset
+// analysis) rather than holding all of it: the same samples, bit for bit, however it is cut.
+// x must outlive the resampler.
+class PolyphaseResampler {
+ public:
+  // Throws gmg::Error as resample_poly does.
+  PolyphaseResampler(const std::vector<float>& x, int from_rate, int to_rate);
+  ~PolyphaseResampler();
+  PolyphaseResampler(const PolyphaseResampler&) = delete;
+  PolyphaseResampler& operator=(const PolyphaseResampler&) = delete;
+
+  // Output samples in all: ceil(len(x) * up / down).
+  long long size() const;
+  // Outputs computed together: a stretch starts at a multiple of it.
+  long long block() const;
+  // Outputs n .. n + count - 1 into out[0 .. count): n a multiple of block(), and n + count a
+  // multiple of it too or size().
+  void compute(long long n, long long count, float* out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The filter design behind it (exposed for tests).
 

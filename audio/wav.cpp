@@ -10,6 +10,7 @@
 #include "audio/wav.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -34,7 +35,8 @@ namespace {
 // The file's bytes as unsigned values (read_file_bytes returns chars, which are signed here).
 class Bytes {
  public:
-  explicit Bytes(const std::string& s) : data_(reinterpret_cast<const unsigned char*>(s.data())), size_(s.size()) {}
+  explicit Bytes(const std::string& s) : Bytes(s.data(), s.size()) {}
+  Bytes(const char* data, std::size_t size) : data_(reinterpret_cast<const unsigned char*>(data)), size_(size) {}
   unsigned char operator[](std::size_t i) const { return data_[i]; }
   const unsigned char* data() const { return data_; }
   std::size_t size() const { return size_; }
@@ -255,8 +257,105 @@ double sample_at(const Bytes& b, std::size_t p, const Format& fmt) {
   return v;
 }
 
-// The data chunk's frames, each the mean of its channels.
-Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c) {
+// The stored sample types, each read as sample_at reads it, the whole chunk in one loop per
+// format (sample_at decides the format for every sample).
+template <typename T>
+T load_le(const unsigned char* p) {
+  T v;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  std::memcpy(&v, p, sizeof v);
+#else
+  unsigned char le[sizeof(T)];
+  for (std::size_t i = 0; i < sizeof(T); ++i) le[i] = p[sizeof(T) - 1 - i];
+  std::memcpy(&v, le, sizeof v);
+#endif
+  return v;
+}
+
+// kAlwaysFinite: integer samples, which need no check.
+struct Pcm8 {
+  static constexpr std::size_t kBytes = 1;
+  static constexpr bool kAlwaysFinite = true;
+  static double read(const unsigned char* p) { return (static_cast<int>(p[0]) - 128) / 128.0; }
+};
+struct Pcm16 {
+  static constexpr std::size_t kBytes = 2;
+  static constexpr bool kAlwaysFinite = true;
+  static double read(const unsigned char* p) { return load_le<std::int16_t>(p) / 32768.0; }
+};
+struct Pcm24 {
+  static constexpr std::size_t kBytes = 3;
+  static constexpr bool kAlwaysFinite = true;
+  static double read(const unsigned char* p) {
+    std::int32_t s = static_cast<std::int32_t>(p[0] | (p[1] << 8) | (p[2] << 16));
+    if (s & 0x800000) s -= 0x1000000;
+    return s / 8388608.0;
+  }
+};
+struct Pcm32 {
+  static constexpr std::size_t kBytes = 4;
+  static constexpr bool kAlwaysFinite = true;
+  static double read(const unsigned char* p) { return load_le<std::int32_t>(p) / 2147483648.0; }
+};
+struct Float32 {
+  static constexpr std::size_t kBytes = 4;
+  static constexpr bool kAlwaysFinite = false;
+  static double read(const unsigned char* p) { return load_le<float>(p); }
+};
+struct Float64 {
+  static constexpr std::size_t kBytes = 8;
+  static constexpr bool kAlwaysFinite = false;
+  static double read(const unsigned char* p) { return load_le<double>(p); }
+};
+
+// out[i] = the mean of frame i's channels, computed as decode_samples does (the sum from 0.0 in
+// channel order, times 1 / channels, rounded to float), in a loop the compiler vectorises. Returns
+// false when a sample is not finite (the caller then finds it).
+template <typename F>
+bool mix_down(const unsigned char* data, std::size_t frames, int channels, float* out) {
+  const double inv_channels = 1.0 / channels;
+  int finite = 1;
+  if (channels == 1) {
+    for (std::size_t i = 0; i < frames; ++i) {
+      const double v = F::read(data + i * F::kBytes);
+      if constexpr (!F::kAlwaysFinite) finite &= std::fabs(v) <= DBL_MAX;
+      out[i] = static_cast<float>((0.0 + v) * inv_channels);
+    }
+    return finite != 0;
+  }
+  const std::size_t frame_bytes = F::kBytes * static_cast<std::size_t>(channels);
+  for (std::size_t i = 0; i < frames; ++i) {
+    const unsigned char* p = data + i * frame_bytes;
+    double sum = 0.0;
+    for (int ch = 0; ch < channels; ++ch) {
+      const double v = F::read(p + static_cast<std::size_t>(ch) * F::kBytes);
+      if constexpr (!F::kAlwaysFinite) finite &= std::fabs(v) <= DBL_MAX;
+      sum += v;
+    }
+    out[i] = static_cast<float>(sum * inv_channels);
+  }
+  return finite != 0;
+}
+
+bool mix_down(const Format& fmt, const unsigned char* data, std::size_t frames, float* out) {
+  if (fmt.kind == Format::Kind::kFloat)
+    return fmt.bits == 32 ? mix_down<Float32>(data, frames, fmt.channels, out)
+                          : mix_down<Float64>(data, frames, fmt.channels, out);
+  switch (fmt.bits) {
+    case 8:
+      return mix_down<Pcm8>(data, frames, fmt.channels, out);
+    case 16:
+      return mix_down<Pcm16>(data, frames, fmt.channels, out);
+    case 24:
+      return mix_down<Pcm24>(data, frames, fmt.channels, out);
+    default:
+      return mix_down<Pcm32>(data, frames, fmt.channels, out);
+  }
+}
+
+// The data chunk's frames, each the mean of its channels. With a file, the pages of the chunk are
+// given back as they are decoded, so that a long recording is not held twice.
+Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c, const MappedFile* file) {
   const Format& fmt = c.fmt;
   const std::uint64_t bytes_per_sample = static_cast<std::uint64_t>(fmt.bits / 8);
   const std::uint64_t frame_bytes = bytes_per_sample * static_cast<std::uint64_t>(fmt.channels);
@@ -275,6 +374,24 @@ Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c) {
   }
   Audio a;
   a.sample_rate = fmt.sample_rate;
+  // Decoded a stretch at a time into the reserved samples (not zeroed first).
+  a.samples.reserve(static_cast<std::size_t>(frames));
+  constexpr std::size_t kStretch = 4096, kRelease = std::size_t{16} << 20;
+  float stretch[kStretch];
+  bool finite = true;
+  std::size_t released = 0;
+  for (std::size_t i0 = 0; i0 < frames; i0 += kStretch) {
+    const std::size_t n = std::min<std::size_t>(kStretch, frames - i0);
+    finite = mix_down(fmt, b.data() + c.data_body + i0 * frame_bytes, n, stretch) && finite;
+    a.samples.insert(a.samples.end(), stretch, stretch + n);
+    const std::size_t done = c.data_body + (i0 + n) * frame_bytes;
+    if (file && done - released >= kRelease) {
+      file->release(released, done - released);
+      released = done;
+    }
+  }
+  if (finite) return a;
+  // A sample is NaN or infinite: found again one by one, for the message.
   a.samples.resize(static_cast<std::size_t>(frames));
   const double inv_channels = 1.0 / fmt.channels;
   std::size_t p = static_cast<std::size_t>(c.data_body);
@@ -300,11 +417,27 @@ Audio parse_wav(const std::string& bytes, const std::string& name) {
   return naming_memory_errors(name, "reading the audio", [&] {
     const Bytes b(bytes);
     check_riff_header(name, b);
-    return decode_samples(name, b, find_chunks(name, b));
+    return decode_samples(name, b, find_chunks(name, b), nullptr);
   });
 }
 
-Audio read_wav(const std::string& path) { return parse_wav(read_file_bytes(path), path); }
+// The file is read from its mapping, not copied into memory first (an hour of 16-bit audio at
+// 16 kHz is 115 MB), and a file changed while it is read is an error rather than a mix of two.
+Audio read_wav(const std::string& path) {
+  const MappedFile file(path);
+  try {
+    Audio a = naming_memory_errors(path, "reading the audio", [&] {
+      const Bytes b(file.data(), file.size());
+      check_riff_header(path, b);
+      return decode_samples(path, b, find_chunks(path, b), &file);
+    });
+    file.check_unchanged();
+    return a;
+  } catch (const Error&) {
+    file.check_unchanged();  // a file cut short while read: that, not what its bytes then looked like
+    throw;
+  }
+}
 
 Audio read_wav(const std::string& path, int target_rate) {
   if (target_rate <= 0) throw Error(path + ": target sample rate " + std::to_string(target_rate) + " is not positive");

@@ -1,5 +1,7 @@
 // Benchmark: graph construction and reenactment speed and memory. Prints figures; asserts
 // nothing about time (machines are shared and noisy). Run: build/bench_graph [--runs N] [--quick]
+// or build/bench_graph --onsets FILE.wav [--onset-runs N] for the WAV reader and the onset analysis
+// alone on any recording (e.g. a 1 h one from `gmg synth`).
 //
 // Whole commands (the gmg binary run as a child process, wall and CPU time and peak memory from
 // wait4's rusage, min / median / max over N runs, 3 by default):
@@ -21,6 +23,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -129,12 +132,26 @@ void in_memory_figures(const Config& cfg) {
       ev.total_frames, r.plan.segments.size(), analyse, search, analyse + search);
 }
 
+// audio::read_wav alone: min / median / max milliseconds.
+void read_figures(const std::string& wav, int runs) {
+  std::vector<double> cpu;
+  for (int i = 0; i < runs; ++i) {
+    const double c0 = thread_cpu_seconds();
+    const audio::Audio audio = audio::read_wav(wav);
+    cpu.push_back((thread_cpu_seconds() - c0) * 1000.0);
+  }
+  const Spread c = spread(cpu);
+  std::printf("read_wav alone, %s (%d runs, min / median / max):\n  CPU %.1f / %.1f / %.1f ms\n",
+              std::filesystem::path(wav).filename().c_str(), runs, c.min, c.median, c.max);
+  std::fflush(stdout);
+}
+
 // audio::detect_onsets alone on a clip already in memory: min / median / max milliseconds.
-void onset_figures(const std::string& wav) {
+void onset_figures(const std::string& wav, int runs = 21) {
   const audio::Audio audio = audio::read_wav(wav);
   std::vector<double> wall, cpu;
   std::size_t onsets = 0;
-  for (int i = 0; i < 21; ++i) {
+  for (int i = 0; i < runs; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = thread_cpu_seconds();
     const audio::OnsetAnalysis a = audio::detect_onsets(audio, audio::OnsetParams{});
@@ -144,21 +161,34 @@ void onset_figures(const std::string& wav) {
   }
   const Spread w = spread(wall), c = spread(cpu);
   std::printf(
-      "onset analysis alone, %s (%.1f s at %d Hz, %zu onsets; 21 runs, min / median / max):\n"
+      "onset analysis alone, %s (%.1f s at %d Hz, %zu onsets; %d runs, min / median / max):\n"
       "  CPU %.1f / %.1f / %.1f ms, wall %.1f / %.1f / %.1f ms\n",
       std::filesystem::path(wav).filename().c_str(), static_cast<double>(audio.samples.size()) / audio.sample_rate,
-      audio.sample_rate, onsets, c.min, c.median, c.max, w.min, w.median, w.max);
+      audio.sample_rate, onsets, runs, c.min, c.median, c.max, w.min, w.median, w.max);
   std::fflush(stdout);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 3;
+  int runs = 3, onset_runs = 21;
   bool quick = false;
+  std::string onsets_of;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
     if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+    if (std::strcmp(argv[i], "--onsets") == 0 && i + 1 < argc) onsets_of = argv[++i];
+    if (std::strcmp(argv[i], "--onset-runs") == 0 && i + 1 < argc) onset_runs = std::max(1, std::atoi(argv[++i]));
+  }
+  if (!onsets_of.empty()) {
+    try {
+      read_figures(onsets_of, onset_runs);
+      onset_figures(onsets_of, onset_runs);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_graph: %s\n", e.what());
+      return 1;
+    }
+    return 0;
   }
   const gmg::testing::TempDir dir;
   const std::string d = dir.path().string();

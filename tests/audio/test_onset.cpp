@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <random>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "audio/onset.h"
+#include "audio/resample.h"
 #include "audio/wav.h"
 #include "engine/core/error.h"
 #include "tests/test_support.h"
@@ -65,6 +67,24 @@ TEST(Onsets, TakingTheAudioGivesTheSameEnvelopeAndReleasesIt) {
     EXPECT_TRUE(taken.samples.empty()) << rate;  // NOLINT(bugprone-use-after-move): that is the contract
     EXPECT_EQ(taken.samples.capacity(), 0u) << rate;
   }
+}
+
+// The envelope resamples to 22050 Hz a stretch at a time as the spectrogram reaches it: the same
+// envelope, bit for bit, as from the whole signal resampled first, at rates whose resampler works
+// in blocks of 16 to 7056 samples, and at lengths from none to many times its buffer.
+TEST(Onsets, ResamplingAsItGoesIsResamplingFirst) {
+  for (const int rate : {16000, 44100, 48000, 8000, 32000})
+    for (const double seconds : {0.0, 0.01, 0.3, 11.7}) {
+      const Audio a = bursts(rate, {0.1, 2.5, 7.0, 11.0}, seconds, 0.01);
+      Audio at_onset_rate;
+      at_onset_rate.sample_rate = OnsetAnalysis::kSampleRate;
+      at_onset_rate.samples = gmg::audio::resample_poly(a.samples, rate, OnsetAnalysis::kSampleRate);
+      const std::vector<float> got = gmg::audio::onset_strength_envelope(a);
+      const std::vector<float> want = gmg::audio::onset_strength_envelope(at_onset_rate);
+      ASSERT_EQ(got.size(), want.size()) << rate << " Hz, " << seconds << " s";
+      EXPECT_EQ(std::memcmp(got.data(), want.data(), got.size() * sizeof(float)), 0)
+          << rate << " Hz, " << seconds << " s";
+    }
 }
 
 TEST(Onsets, SilenceHasNone) {

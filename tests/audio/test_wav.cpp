@@ -263,6 +263,89 @@ TEST(Wav, ChannelsAreMixedDownByMean) {
   EXPECT_NEAR(b.samples[0], 0.6f, 1e-6);
 }
 
+// Every format and channel count decodes as the formula, bit for bit (the mean of the channels
+// summed from 0.0 in double, times 1 / channels, rounded to float; a float sample of -0 comes out
+// +0), over more frames than the reader decodes at a time; read from a file and from bytes alike.
+TEST(Wav, EveryFormatDecodesAsTheFormulaBitForBit) {
+  TempDir dir;
+  struct Case {
+    std::uint16_t tag, bits;
+  };
+  std::uint64_t state = 7;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 11;
+  };
+  for (const Case c : {Case{1, 8}, Case{1, 16}, Case{1, 24}, Case{1, 32}, Case{3, 32}, Case{3, 64}})
+    for (const std::uint16_t channels : {1, 2, 3}) {
+      Fmt f;
+      f.tag = c.tag;
+      f.bits = c.bits;
+      f.channels = channels;
+      const std::size_t frames = 9001;
+      std::string d;
+      std::vector<double> values;  // each stored sample as the reader reads it
+      for (std::size_t i = 0; i < frames * channels; ++i) {
+        const std::uint64_t r = next();
+        const bool special = i % 97 == 5;  // the extremes, and -0 for floats
+        if (c.tag == 1 && c.bits == 8) {
+          const int u = special ? (i % 2 ? 0 : 255) : static_cast<int>(r % 256);
+          d.push_back(static_cast<char>(u));
+          values.push_back((u - 128) / 128.0);
+        } else if (c.tag == 1 && c.bits == 16) {
+          const std::int16_t v = special ? (i % 2 ? -32768 : 32767) : static_cast<std::int16_t>(r);
+          le16(d, static_cast<std::uint16_t>(v));
+          values.push_back(v / 32768.0);
+        } else if (c.tag == 1 && c.bits == 24) {
+          const std::int32_t v =
+              special ? (i % 2 ? -8388608 : 8388607) : static_cast<std::int32_t>(r % 16777216) - 8388608;
+          le24(d, static_cast<std::uint32_t>(v) & 0xFFFFFFu);
+          values.push_back(v / 8388608.0);
+        } else if (c.tag == 1) {
+          const std::int32_t v = special ? (i % 2 ? std::numeric_limits<std::int32_t>::min() : 2147483647)
+                                         : static_cast<std::int32_t>(static_cast<std::uint32_t>(r));
+          le32(d, static_cast<std::uint32_t>(v));
+          values.push_back(v / 2147483648.0);
+        } else if (c.bits == 32) {
+          const float v = special ? -0.0f : static_cast<float>(static_cast<double>(r % 2000001) / 1e6 - 1.0);
+          f32(d, v);
+          values.push_back(v);
+        } else {
+          const double v = special ? -0.0 : static_cast<double>(r % 2000001) / 1e6 - 1.0 + 1e-12;
+          f64(d, v);
+          values.push_back(v);
+        }
+      }
+      std::vector<float> want(frames);
+      for (std::size_t i = 0; i < frames; ++i) {
+        double sum = 0.0;
+        for (std::size_t ch = 0; ch < channels; ++ch) sum += values[i * channels + ch];
+        want[i] = static_cast<float>(sum * (1.0 / channels));
+      }
+      const std::string bytes = wav(f, d);
+      const Audio from_file = read_bytes(dir, "formula.wav", bytes);
+      const Audio from_bytes = gmg::audio::parse_wav(bytes, "formula.wav");
+      for (const Audio* a : {&from_file, &from_bytes}) {
+        ASSERT_EQ(a->samples.size(), frames);
+        EXPECT_EQ(std::memcmp(a->samples.data(), want.data(), frames * sizeof(float)), 0)
+            << "tag " << c.tag << ", " << c.bits << " bits, " << channels << " channels";
+      }
+    }
+}
+
+// A NaN far into the file, past the first stretch decoded at a time, is found and named.
+TEST(Wav, NotFiniteSampleFarIntoTheFile) {
+  TempDir dir;
+  Fmt f;
+  f.tag = 3;
+  f.bits = 32;
+  f.channels = 2;
+  std::string d;
+  for (int i = 0; i < 2 * 10000; ++i) f32(d, i == 2 * 9000 + 1 ? std::numeric_limits<float>::infinity() : 0.25f);
+  expect_wav_error(dir, "late.wav", wav(f, d),
+                   {"byte " + std::to_string(44 + 4 * (2 * 9000 + 1)), "sample 9000 (channel 1) is infinite"});
+}
+
 TEST(Wav, SampleRates) {
   TempDir dir;
   for (std::uint32_t rate : {44100u, 48000u, 16000u, 8000u, 22050u}) {
