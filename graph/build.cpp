@@ -12,6 +12,7 @@
 #include "graph/graph_builder.h"
 #include "graph/key_nodes.h"
 #include "graph/key_poses.h"
+#include "graph/reference_facts.h"
 
 namespace gmg {
 
@@ -146,6 +147,7 @@ MotionGraph graph_build(std::vector<ClipEvents> clips, const GraphParams& params
     builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
   g.graph = builder.finish();
   g.key_poses = key_junction_poses(g);
+  add_reference_facts(g);
   return g;
 }
 
