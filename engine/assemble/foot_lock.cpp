@@ -152,6 +152,7 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
       glm::dquat src_rot;
       track_at(track, c.time, src, src_rot);
       const bool same_run = i > 0 && c.run == clock[static_cast<std::size_t>(i) - 1].run;
+      if (i > 0 && !same_run) track.release_source_pages();
       const int sf = static_cast<int>(std::floor(c.time));
       const bool contact = track.contact(sf);
       const bool low = track.low(sf);

@@ -37,6 +37,8 @@ class FootTrack {
   int frame_count() const { return source_->frame_count; }
   // The knee's hinge axis in the thigh's frame (CaptureFacts::knee_hinges), 0 when unknown.
   const glm::dvec3& hinge() const { return hinge_; }
+  // Gives back the source's pages read so far (engine/motion/motion.h motion_release_pages).
+  void release_source_pages() const { motion_release_pages(*source_); }
 
  private:
   const Motion* source_;

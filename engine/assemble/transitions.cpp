@@ -168,6 +168,9 @@ Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, cons
   Velocity dst_vel, previous_vel, old_vel;
   for (std::size_t i = 0; i < clock.size(); ++i) {
     const SourceClock& c = clock[i];
+    // A new run reads another stretch of the source: the pages of the stretches read so far go back
+    // (a source read in place from a graph file keeps only what is being read resident).
+    if (i > 0 && c.run != clock[i - 1].run) motion_release_pages(source);
     reader.sample(c.time, dst);
     if (i > 0) {
       off.decay(y);
