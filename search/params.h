@@ -46,6 +46,15 @@ struct SearchParams {
   InitMode init = InitMode::Feature;  // feature (paper 4.2.3) or random (weak initialisation)
   // Fallback 2 drops this growing share of stopping nodes per round: 0.25, 0.5, 0.75, 1.0.
   int ignore_rounds = 4;
+  // The most key nodes a subsequence ranks as start nodes (0: all of them). A graph with more
+  // ranks an even sample of this many per subsequence (every ceil(keys / start_candidates)-th key
+  // from an offset each subsequence draws), so ranking costs the same on a reference of any
+  // length; with fewer every key is ranked, exactly as the paper ranks them. 16384 is above the key
+  // nodes of an hour of speech (13,461 in the 1 h synthetic speaker, about 3.7 a second), so
+  // references of up to an hour plan exactly as before; ranking 16384 keys costs about 3 ms per
+  // subsequence (docs/performance.md), and a 19 h reference (about 250,000 keys) then ranks one key
+  // in 16 for each subsequence, a different one each time.
+  int start_candidates = 16384;
 
   // ---- natural planner only ----
   // Junction cost J(s) = d_pose(c, s) / (mean unnatural edge weight of the graph), c the frame the

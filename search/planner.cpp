@@ -46,6 +46,11 @@ class Planner {
         reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps, params.reuse_cap_plays,
                static_cast<int>(std::lround(params.reuse_cap_window_s * g.motion.fps))) {
     if (natural_ && params.variety > 0.0) draw_preferences();
+    // Above start_candidates key nodes, each subsequence ranks a sample of them (candidates_of);
+    // one draw seeds the samples of the whole job. At or below it no draw is made, so a graph with
+    // no more key nodes plans exactly as when every key node was ranked.
+    const std::size_t cap = static_cast<std::size_t>(params.start_candidates);
+    if (cap > 0 && index_.keys.size() > cap) sample_seed_ = rng_();
   }
 
   Plan run() {
@@ -62,6 +67,9 @@ class Planner {
       previous_clean = seg.accepted && seg.fallback == Fallback::None;
       previous_path = seg.path;
       plan.segments.push_back(std::move(seg));
+      // The junction poses of this subsequence were read from the motion here and there: give
+      // those pages back (a graph served from its file keeps only what is read next resident).
+      motion_release_pages(g_.motion);
     }
     return plan;
   }
@@ -99,34 +107,50 @@ class Planner {
   // [10, 60] frames (shorter says little, longer is beyond what the path will play).
   static int window_of(const Subsequence& sub) { return std::clamp(sub.length, 10, 60); }
 
-  // Start nodes of attempt `round` with their estimated costs (natural planner).
-  void ranked_starts(std::size_t k, int round, BeamRequest& request) {
-    const std::vector<double>* estimate = nullptr;
-    if (natural_) {
-      estimate_start_costs(subs_[k]);
-      estimate = &key_costs_;
+  // The key nodes subsequence k ranks as start nodes (initialisation.h start_candidate_sample),
+  // their estimated costs and their ranking.
+  void candidates_of(std::size_t k) {
+    sample_ = start_candidate_sample(index_.keys.size(), params_.start_candidates, sample_seed_, k);
+    candidate_frames_.resize(sample_.count);
+    std::vector<std::size_t> candidates(sample_.count);
+    for (std::size_t m = 0; m < sample_.count; ++m) {
+      candidates[m] = sample_.first + m * sample_.stride;
+      candidate_frames_[m] = index_.keys[candidates[m]];
     }
-    request.start_nodes = initialisation_start_nodes(g_, index_, k, round, params_, rng_, estimate);
+    if (natural_) estimate_start_costs(subs_[k]);
+    ranking_ = StartRanking(index_, k, std::move(candidates), natural_ ? &key_costs_ : nullptr, params_);
+    ranking_for_ = k;
+  }
+
+  // Start nodes of attempt `round` with their estimated costs (natural planner). The ranking of a
+  // subsequence's candidates is made once: nothing it depends on changes before its path is chosen.
+  void ranked_starts(std::size_t k, int round, BeamRequest& request) {
+    if (ranking_for_ != k) candidates_of(k);
+    request.start_nodes = ranking_.start_nodes(g_, index_, round, params_, rng_);
     starts_cost(request);
   }
 
-  // Per key node: junction_beam * J + speech_weight * speech window + reuse_weight * reuse window.
+  // Per candidate key node: junction_beam * J + speech_weight * speech window + reuse_weight *
+  // reuse window.
   void estimate_start_costs(const Subsequence& sub) {
-    key_costs_.assign(index_.keys.size(), 0.0);
+    key_costs_.assign(sample_.count, 0.0);
     if (reference_ >= 0 && params_.junction_beam > 0.0) {
-      junction_.costs(reference_, index_.keys, scratch_);
+      if (junction_.has_key_poses())
+        junction_.key_costs(reference_, sample_.first, sample_.stride, sample_.count, scratch_);
+      else
+        junction_.costs(reference_, candidate_frames_, scratch_);
       for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.junction_beam * scratch_[m];
     }
     if (speech_.active() && params_.speech_weight > 0.0) {
-      speech_.window_costs(sub.start, window_of(sub), index_.keys, scratch_);
+      speech_.window_costs(sub.start, window_of(sub), candidate_frames_, scratch_);
       for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.speech_weight * scratch_[m];
     }
     if (params_.reuse_weight > 0.0) {
-      reuse_.window_costs(window_of(sub), sub.start, index_.keys, scratch_);
+      reuse_.window_costs(window_of(sub), sub.start, candidate_frames_, scratch_);
       for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.reuse_weight * scratch_[m];
     }
-    for (std::size_t m = 0; m < index_.keys.size(); ++m)
-      if (index_.keys[m] != reference_) key_costs_[m] += preference(index_.keys[m]);
+    for (std::size_t m = 0; m < sample_.count; ++m)
+      if (candidate_frames_[m] != reference_) key_costs_[m] += preference(candidate_frames_[m]);
   }
 
   void starts_cost(BeamRequest& request) {
@@ -325,7 +349,15 @@ class Planner {
     }
     // Fallback 3 (and the failure case, which must still produce frames): hold the previous
     // result's last frame, or for the very first subsequence the best start node.
-    const int hold = last >= 0 ? last : initialisation_start_nodes(g_, index_, k, 0, params_, rng_, nullptr).front();
+    int hold = last;
+    if (hold < 0) {
+      if (ranking_for_ != k) candidates_of(k);
+      std::vector<std::size_t> candidates(sample_.count);
+      for (std::size_t m = 0; m < sample_.count; ++m) candidates[m] = sample_.first + m * sample_.stride;
+      hold = StartRanking(index_, k, std::move(candidates), nullptr, params_)
+                 .start_nodes(g_, index_, 0, params_, rng_)
+                 .front();
+    }
     seg.path.assign(1, hold);
     return seg;
   }
@@ -351,9 +383,15 @@ class Planner {
   JunctionCost junction_;
   SpeechMatch speech_;
   ReuseTracker reuse_;
-  int reference_ = -1;             // the current subsequence's junction reference frame
-  int continuing_from_ = -1;       // the natural successor of the previous path, or -1
-  std::vector<double> key_costs_;  // estimated start cost of every key node
+  int reference_ = -1;        // the current subsequence's junction reference frame
+  int continuing_from_ = -1;  // the natural successor of the previous path, or -1
+  // The ranking of subsequence ranking_for_'s candidates (candidates_of), and its estimates.
+  std::size_t ranking_for_ = static_cast<std::size_t>(-1);
+  StartRanking ranking_;
+  std::uint64_t sample_seed_ = 0;
+  CandidateSample sample_;
+  std::vector<int> candidate_frames_;
+  std::vector<double> key_costs_;  // estimated start cost of every candidate
   std::vector<double> scratch_;
   std::vector<double> preference_;  // per block of the reference: the seed's preference
   int block_ = 1;

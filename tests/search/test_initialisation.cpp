@@ -1,4 +1,5 @@
 // Feature-based initialisation: key features, d_feat ranking, occurrences, random fallback.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -66,5 +67,49 @@ TEST(Initialisation, RandomNodesAreSeededAndInRange) {
   EXPECT_NE(na, initialisation_start_nodes(g, index, 0, 0, p, c));
 }
 
+// At or below the cap every key node is a candidate; above it an even sample of at most cap of
+// them, every ceil(keys / cap)-th from an offset that the seed and the subsequence decide.
+TEST(Initialisation, AboveTheCapEachSubsequenceRanksAnEvenSample) {
+  for (int cap : {0, 100, 1000}) {
+    const CandidateSample all = start_candidate_sample(100, cap, 7, 3);
+    EXPECT_EQ(all.first, 0u);
+    EXPECT_EQ(all.stride, 1u);
+    EXPECT_EQ(all.count, 100u);
+  }
+  std::vector<std::size_t> offsets;
+  for (std::size_t k = 0; k < 40; ++k) {
+    const CandidateSample s = start_candidate_sample(100, 30, 7, k);
+    EXPECT_EQ(s.stride, 4u);  // ceil(100 / 30)
+    EXPECT_LT(s.first, 4u);
+    EXPECT_EQ(s.count, (100 - s.first + 3) / 4);
+    EXPECT_LE(s.count, 30u);
+    EXPECT_LT(s.first + (s.count - 1) * s.stride, 100u);
+    const CandidateSample again = start_candidate_sample(100, 30, 7, k);
+    EXPECT_EQ(again.first, s.first);
+    offsets.push_back(s.first);
+  }
+  std::sort(offsets.begin(), offsets.end());
+  EXPECT_EQ(std::unique(offsets.begin(), offsets.end()) - offsets.begin(), 4) << "subsequences see different samples";
+  EXPECT_NE(start_candidate_sample(1000, 30, 7, 0).first, start_candidate_sample(1000, 30, 8, 0).first);
+}
+
+// A ranking made once serves every attempt: its rounds are those initialisation_start_nodes gives.
+TEST(Initialisation, ARankingServesEveryRound) {
+  const MotionGraph g = chain_graph(200, {0, 10, 20, 40, 70, 75, 90, 120, 150, 151, 170}, {}, {});
+  SearchParams p;
+  p.l_feat = 2;
+  p.w_full = {1, 1};
+  p.l_npaths = 3;
+  const std::vector<Subsequence> subs = {{0, 20, Termination::Rhythm, ""}, {20, 20, Termination::Rhythm, ""}};
+  const StartNodeIndex index = initialisation_prepare(g, subs, p);
+  std::vector<std::size_t> all(index.keys.size());
+  for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
+  StartRanking ranking(index, 0, all, nullptr, p);
+  for (int round = 0; round < 6; ++round) {  // the last rounds run out of key nodes: random frames
+    std::mt19937_64 a(5), b(5);
+    EXPECT_EQ(ranking.start_nodes(g, index, round, p, a), initialisation_start_nodes(g, index, 0, round, p, b))
+        << "round " << round;
+  }
+}
 }  // namespace
 }  // namespace gmg
