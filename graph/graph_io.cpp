@@ -126,22 +126,26 @@ void in_chunks(const Source& src, const T* p, std::size_t n, const F& visit) {
   }
 }
 
+// Reads the payload front to back, adding every byte it takes to the checksum as it goes, so one
+// pass both checks and reads the file: the large arrays are validated chunk by chunk while they are
+// summed, and each chunk's pages are given back after it.
 class Reader {
  public:
-  Reader(const char* data, std::size_t size, const std::string& path) : data_(data), size_(size), path_(path) {}
+  Reader(const char* data, std::size_t size, const std::string& path, const Source& src)
+      : data_(data), size_(size), path_(path), src_(src) {}
   template <typename T>
   T pod() {
     need(sizeof(T));
     T v;
     std::memcpy(&v, data_ + pos_, sizeof(T));
-    pos_ += sizeof(T);
+    consume(sizeof(T));
     return v;
   }
   std::string str() {
     const std::uint32_t n = pod<std::uint32_t>();
     need(n);
     std::string s(data_ + pos_, n);
-    pos_ += n;
+    consume(n);
     return s;
   }
   // The count of a list of T, checked against the bytes left; the caller reads the items.
@@ -155,21 +159,26 @@ class Reader {
   std::vector<T> vec() {
     std::vector<T> v(count<T>());
     if (!v.empty()) std::memcpy(v.data(), data_ + pos_, v.size() * sizeof(T));
-    pos_ += v.size() * sizeof(T);
+    consume(v.size() * sizeof(T));
     return v;
   }
   // n items of T converted one by one (for arrays whose memory layout is not the file's).
   template <typename T, typename F>
   void items(std::size_t n, const F& take) {
     need(n * sizeof(T));
-    for (std::size_t i = 0; i < n; ++i) {
-      T v;
-      std::memcpy(&v, data_ + pos_ + i * sizeof(T), sizeof(T));
-      take(i, v);
+    constexpr std::size_t kChunk = 8192;
+    for (std::size_t i = 0; i < n; i += kChunk) {
+      const std::size_t m = std::min(kChunk, n - i);
+      for (std::size_t j = 0; j < m; ++j) {
+        T v;
+        std::memcpy(&v, data_ + pos_ + j * sizeof(T), sizeof(T));
+        take(i + j, v);
+      }
+      consume(m * sizeof(T));
     }
-    pos_ += n * sizeof(T);
   }
-  // A list written by Writer::aligned: its items, in place (they live as long as the bytes).
+  // The start of a list written by Writer::aligned: its count and zero padding. Its items are
+  // next, at the pointer returned; read them with in_place.
   template <typename T>
   std::pair<const T*, std::size_t> aligned() {
     const std::uint64_t n = pod<std::uint64_t>();
@@ -177,13 +186,29 @@ class Reader {
     need(pad);
     for (std::size_t i = 0; i < pad; ++i)
       if (data_[pos_ + i] != 0) fail("padding that is not zero");
-    pos_ += pad;
+    consume(pad);
     if (n > (size_ - pos_) / sizeof(T)) fail("a list is longer than the file");
+    return {reinterpret_cast<const T*>(data_ + pos_), static_cast<std::size_t>(n)};
+  }
+  // The n items of T that follow (an aligned list's): visit(chunk, first, count) over chunks of a
+  // few MB, each summed after its visit and its pages given back, so a pass over a large array
+  // does not leave it resident. The items stay readable in place (they live as long as the bytes).
+  template <typename T, typename F>
+  void in_place(std::size_t n, const F& visit) {
+    need(n * sizeof(T));
     const T* p = reinterpret_cast<const T*>(data_ + pos_);
-    pos_ += static_cast<std::size_t>(n) * sizeof(T);
-    return {p, static_cast<std::size_t>(n)};
+    constexpr std::size_t kChunk = (std::size_t{4} << 20) / sizeof(T);
+    for (std::size_t i = 0; i < n; i += kChunk) {
+      const std::size_t m = std::min(kChunk, n - i);
+      visit(p + i, i, m);
+      const std::size_t offset = static_cast<std::size_t>(data_ + pos_ - src_.data);
+      consume(m * sizeof(T));
+      src_.release(offset, m * sizeof(T));
+    }
   }
   bool done() const { return pos_ == size_; }
+  // The checksum of every byte read so far.
+  std::uint64_t checksum() const { return sum_.value(); }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(error_at_byte(path_, static_cast<long long>(pos_ + kHeader), "damaged graph file: " + what));
   }
@@ -192,10 +217,16 @@ class Reader {
   void need(std::size_t n) {
     if (n > size_ - pos_) fail("unexpected end of data");
   }
+  void consume(std::size_t n) {
+    sum_.add(data_ + pos_, n);
+    pos_ += n;
+  }
   const char* data_;
   std::size_t size_;
   std::size_t pos_ = 0;
   const std::string& path_;
+  const Source& src_;
+  Checksum sum_;
 };
 
 void write_params(Writer& w, const GraphParams& p) {
@@ -361,7 +392,7 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (speech_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
     r.fail("speech features disagree with frames x features");
   bool finite = true;
-  in_chunks(src, speech, speech_n, [&](const float* p, std::size_t, std::size_t n) {
+  r.in_place<float>(speech_n, [&](const float* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a speech feature is not finite");
@@ -369,7 +400,7 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (activity_n != 0 && activity_n != static_cast<std::size_t>(g.motion.frame_count))
     r.fail("motion activity disagrees with the frame count");
   bool valid = true;
-  in_chunks(src, activity, activity_n, [&](const float* p, std::size_t, std::size_t n) {
+  r.in_place<float>(activity_n, [&](const float* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) valid = valid && std::isfinite(p[i]) && p[i] >= 0.0f;
   });
   if (!valid) r.fail("a motion activity is negative or not finite");
@@ -383,7 +414,7 @@ void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
   if (n != 0 && n != g.keys.size() * static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)))
     r.fail("key poses disagree with key nodes x pose values");
   bool finite = true;
-  in_chunks(src, poses, n, [&](const double* p, std::size_t, std::size_t m) {
+  r.in_place<double>(n, [&](const double* p, std::size_t, std::size_t m) {
     for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a key pose value is not finite");
@@ -424,14 +455,14 @@ void read_reference_facts(Reader& r, const Source& src, MotionGraph& g) {
   if (flags_n != (legs > 0 ? frames : 0)) r.fail("foot contacts disagree with the frame count");
   const unsigned known_bits = (1u << (2 * legs)) - 1;
   bool valid = true;
-  in_chunks(src, flags, flags_n, [&](const std::uint8_t* p, std::size_t, std::size_t n) {
+  r.in_place<std::uint8_t>(flags_n, [&](const std::uint8_t* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) valid = valid && (p[i] & ~known_bits) == 0;
   });
   if (!valid) r.fail("a foot contact has bits of no leg");
   c.foot_flags = Samples<std::uint8_t>::view(flags, flags_n, src.owner);
   const auto [costs, costs_n] = r.aligned<float>();
   if (costs_n != (c.known && !g.activity.empty() ? frames : 0)) r.fail("beat end costs disagree with the frame count");
-  in_chunks(src, costs, costs_n, [&](const float* p, std::size_t, std::size_t n) {
+  r.in_place<float>(costs_n, [&](const float* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) valid = valid && p[i] >= 0.0f && p[i] <= 1.0f;
   });
   if (!valid) r.fail("a beat end cost is not a number from 0 to 1");
@@ -439,17 +470,18 @@ void read_reference_facts(Reader& r, const Source& src, MotionGraph& g) {
 }
 
 // Reads write_body's section (the face is copied: SmplxBody owns its arrays).
-void read_body(Reader& r, const Source& src, MotionGraph& g) {
+void read_body(Reader& r, MotionGraph& g) {
   SmplxBody& b = g.body;
   const std::uint32_t dims = r.pod<std::uint32_t>();
   if (dims > 10000) r.fail("implausible face coefficient count");
   b.expression_dims = static_cast<int>(dims);
-  const auto [face, face_n] = r.aligned<double>();
+  const std::size_t face_n = r.aligned<double>().second;
   if (face_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
     r.fail("the face disagrees with frames x coefficients");
   b.expressions.reserve(face_n);
-  in_chunks(src, face, face_n,
-            [&](const double* p, std::size_t, std::size_t n) { b.expressions.insert(b.expressions.end(), p, p + n); });
+  r.in_place<double>(face_n, [&](const double* p, std::size_t, std::size_t n) {
+    b.expressions.insert(b.expressions.end(), p, p + n);
+  });
   b.betas = r.vec<double>();
   if (b.betas.size() > 10000) r.fail("implausible betas count");
   for (const std::vector<double>* v : {&b.expressions, &b.betas})
@@ -546,20 +578,39 @@ void read_motion(Reader& r, const Source& src, Motion& m) {
     r.fail("frame rate " + format_number(m.fps) + " is outside " + format_number(limits::kMinFps) + " to " +
            format_number(limits::kMaxFps) + " fps");
   if (m.frame_count < 1 || m.frame_count > limits::kMaxFrames) r.fail("invalid frame count");
-  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
-  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
   const std::size_t joints = m.skeleton.joints.size();
   const std::size_t expected = static_cast<std::size_t>(m.frame_count) * joints;
-  if (rotations_n != expected || translations_n != expected) r.fail("motion size disagrees with frames x joints");
+  // Sizes are checked before values: the rotations' count, then the translations' (after the
+  // rotations' values, which lie between them).
+  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
+  if (rotations_n != expected) r.fail("motion size disagrees with frames x joints");
   std::size_t bad = expected;
-  in_chunks(src, rotations, expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
-    for (std::size_t k = 0; k < n && bad == expected; ++k)
-      if (!std::isfinite(q[k].w + q[k].x + q[k].y + q[k].z) || std::abs(glm::dot(q[k], q[k]) - 1.0) > 1e-6)
+  // A unit rotation: finite, its squared norm within 1e-6 of 1. Each chunk is checked as a whole
+  // (no early exit, so the loop vectorises) and searched for its first bad value only when it has one.
+  auto unit = [](const glm::dquat& q) {
+    return std::isfinite(q.w + q.x + q.y + q.z) && std::abs(glm::dot(q, q) - 1.0) <= 1e-6;
+  };
+  r.in_place<glm::dquat>(expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
+    if (bad != expected) return;
+    bool all = true;
+    for (std::size_t k = 0; k < n; ++k) all &= unit(q[k]);
+    for (std::size_t k = 0; k < n && !all; ++k)
+      if (!unit(q[k])) {
         bad = first + k;
+        break;
+      }
   });
-  in_chunks(src, translations, expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
-    for (std::size_t k = 0; k < n && first + k < bad; ++k)
-      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) bad = first + k;
+  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
+  if (translations_n != expected) r.fail("motion size disagrees with frames x joints");
+  r.in_place<glm::dvec3>(expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
+    if (first >= bad) return;
+    bool all = true;
+    for (std::size_t k = 0; k < n; ++k) all &= std::isfinite(t[k].x + t[k].y + t[k].z);
+    for (std::size_t k = 0; k < n && !all && first + k < bad; ++k)
+      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) {
+        bad = first + k;
+        break;
+      }
   });
   if (bad != expected)
     r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
@@ -591,7 +642,7 @@ MotionGraph read_payload(Reader& r, const Source& src) {
   read_speech(r, src, g);
   read_key_poses(r, src, g);
   read_reference_facts(r, src, g);
-  read_body(r, src, g);
+  read_body(r, g);
   if (!r.done()) r.fail("trailing bytes after the body");
   return g;
 }
@@ -616,14 +667,23 @@ MotionGraph parse_graph(const Source& src, const std::string& path) {
                                   " bytes declared, " + std::to_string(present) + " present)"));
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
-  Checksum checksum;
-  in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
-  if (sum != checksum.value()) {
+  auto damaged = [&] {
     if (src.file) src.file->check_unchanged();  // a file cut short while it was read reads as zeros
-    throw Error(path + ": graph file is damaged (checksum mismatch)");
+    return Error(path + ": graph file is damaged (checksum mismatch)");
+  };
+  // One pass checks the fields and sums the bytes (Reader). A damaged file may fail a field's check
+  // before its sum is known: then the whole file is summed, and a wrong checksum is what is said.
+  Reader r(bytes + kHeader, present, path, src);
+  try {
+    MotionGraph g = naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
+    if (r.checksum() != sum) throw damaged();
+    return g;
+  } catch (const Error&) {
+    Checksum checksum;
+    in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
+    if (sum != checksum.value()) throw damaged();
+    throw;
   }
-  Reader r(bytes + kHeader, present, path);
-  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
 }
 
 }  // namespace
