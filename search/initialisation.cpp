@@ -49,19 +49,35 @@ double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t 
   return feature_distance_to(index, key_feature(index.test_keys, k, params.l_feat), m, params);
 }
 
-CandidateSample start_candidate_sample(std::size_t keys, int cap, std::uint64_t seed, std::size_t k) {
-  CandidateSample s;
-  s.count = keys;
+std::vector<std::size_t> start_candidate_sample(std::size_t keys, int cap, std::uint64_t seed, std::size_t k) {
+  std::vector<std::size_t> out;
   const std::size_t limit = static_cast<std::size_t>(std::max(0, cap));
-  if (limit == 0 || keys <= limit) return s;
-  s.stride = (keys + limit - 1) / limit;
+  if (limit == 0 || keys <= limit) {
+    out.resize(keys);
+    std::iota(out.begin(), out.end(), 0);
+    return out;
+  }
+  const std::size_t block = std::min(kCandidateBlock, limit);
+  const std::size_t blocks = (keys + block - 1) / block;
+  const std::size_t wanted = limit / block;
+  const std::size_t stride = (blocks + wanted - 1) / wanted;
   std::uint64_t x = seed + k + 0x9e3779b97f4a7c15ULL;  // SplitMix64
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
   x ^= x >> 31;
-  s.first = static_cast<std::size_t>(x % s.stride);
-  s.count = (keys - s.first + s.stride - 1) / s.stride;
-  return s;
+  out.reserve(limit);
+  for (std::size_t b = static_cast<std::size_t>(x % stride); b < blocks; b += stride)
+    for (std::size_t i = b * block; i < std::min(keys, (b + 1) * block); ++i) out.push_back(i);
+  return out;
+}
+
+std::vector<double> feature_distances(const StartNodeIndex& index, std::size_t k,
+                                      const std::vector<std::size_t>& candidates, const SearchParams& params) {
+  std::vector<double> out(candidates.size());
+  if (index.keys.empty()) return out;
+  const std::vector<double> ft = key_feature(index.test_keys, k, params.l_feat);
+  for (std::size_t c = 0; c < candidates.size(); ++c) out[c] = feature_distance_to(index, ft, candidates[c], params);
+  return out;
 }
 
 StartRanking::StartRanking(const StartNodeIndex& index, std::size_t k, std::vector<std::size_t> candidates,
@@ -71,11 +87,19 @@ StartRanking::StartRanking(const StartNodeIndex& index, std::size_t k, std::vect
     candidates_.clear();
     return;
   }
-  const std::vector<double> ft = key_feature(index.test_keys, k, params.l_feat);
-  distance_.resize(candidates_.size());
-  for (std::size_t c = 0; c < candidates_.size(); ++c) {
-    distance_[c] = feature_distance_to(index, ft, candidates_[c], params);
-    if (start_cost) distance_[c] += params.junction_rank * (*start_cost)[c];
+  distance_ = feature_distances(index, k, candidates_, params);
+  if (start_cost)
+    for (std::size_t c = 0; c < candidates_.size(); ++c) distance_[c] += params.junction_rank * (*start_cost)[c];
+  order_.resize(candidates_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+}
+
+StartRanking::StartRanking(std::vector<std::size_t> candidates, std::vector<double> distance,
+                           const SearchParams& params)
+    : candidates_(std::move(candidates)), distance_(std::move(distance)) {
+  if (params.init != InitMode::Feature) {
+    candidates_.clear();
+    distance_.clear();
   }
   order_.resize(candidates_.size());
   std::iota(order_.begin(), order_.end(), 0);

@@ -35,16 +35,15 @@ StartNodeIndex initialisation_prepare(const MotionGraph& g, const std::vector<Su
 // lambda_first * |1 - f_m1 / f_t1| + lambda_occ * o_m.
 double feature_distance(const StartNodeIndex& index, std::size_t k, std::size_t m, const SearchParams& params);
 
-// The key nodes a subsequence ranks (indices into the graph's key frames: first, first + stride,
-// ... count of them). Ranking every key node costs a subsequence time in proportion to the
-// reference; above `cap` key nodes (SearchParams::start_candidates; 0 = no cap) subsequence k ranks
-// every stride-th one, stride = ceil(keys / cap), from an offset in [0, stride) that `seed` and k
-// decide (SplitMix64 of seed + k), so each subsequence weighs a different sample of at most cap
-// key nodes spread evenly over the whole reference. At or below the cap: all of them.
-struct CandidateSample {
-  std::size_t first = 0, stride = 1, count = 0;
-};
-CandidateSample start_candidate_sample(std::size_t keys, int cap, std::uint64_t seed, std::size_t k);
+// The key nodes a subsequence ranks (indices into the graph's key frames, ascending). Ranking every
+// key node costs a subsequence time in proportion to the reference; above `cap` of them
+// (SearchParams::start_candidates; 0 = no cap) subsequence k ranks a sample of at most cap: the
+// key nodes in blocks of kCandidateBlock consecutive ones (fewer when cap is smaller), every
+// stride-th block from an offset that `seed` and k decide (SplitMix64 of seed + k), so each
+// subsequence weighs a different sample spread evenly over the whole reference, and each block's
+// key poses are read as one stretch of memory. At or below the cap: all of them.
+constexpr std::size_t kCandidateBlock = 64;
+std::vector<std::size_t> start_candidate_sample(std::size_t keys, int cap, std::uint64_t seed, std::size_t k);
 
 // The ranking of some key nodes (`candidates`: indices into index.keys, ascending) as start nodes
 // for test key k, by d_feat (plus junction_rank times `start_cost` of each candidate, when given:
@@ -56,6 +55,9 @@ class StartRanking {
   StartRanking() = default;
   StartRanking(const StartNodeIndex& index, std::size_t k, std::vector<std::size_t> candidates,
                const std::vector<double>* start_cost, const SearchParams& params);
+  // From each candidate's ranking distance, already computed (feature_distances plus
+  // junction_rank times its start cost); with init=random, no candidates.
+  StartRanking(std::vector<std::size_t> candidates, std::vector<double> distance, const SearchParams& params);
 
   // The start nodes of attempt `round`: the candidates of ranks [round * l_npaths, (round + 1) *
   // l_npaths), then random frames (from rng) once candidates run out. Exactly l_npaths nodes.
@@ -68,6 +70,10 @@ class StartRanking {
   std::vector<std::size_t> order_;  // positions in candidates_; the first sorted_ are in rank order
   std::size_t sorted_ = 0;
 };
+
+// d_feat of each candidate (indices into index.keys) against test key k.
+std::vector<double> feature_distances(const StartNodeIndex& index, std::size_t k,
+                                      const std::vector<std::size_t>& candidates, const SearchParams& params);
 
 // Start nodes of attempt `round` for subsequence k: the key nodes of ranks
 // [round * l_npaths, (round + 1) * l_npaths) by d_feat (ties in frame order) with init=feature,

@@ -61,27 +61,38 @@ void JunctionCost::costs(int c, const std::vector<int>& frames, std::vector<doub
                                   normaliser_;
 }
 
-void JunctionCost::key_costs(int c, std::size_t first, std::size_t stride, std::size_t count,
-                             std::vector<double>& out) {
+void JunctionCost::key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out) {
   const Pose a = features(c);
   const Eigen::Index d = a.size() / 2;
-  out.resize(count);
-  if (count == 0) return;
-  // The key poses lie key after key, 2d values each: the positions of keys first, first + stride,
-  // ... are the columns of a d x count matrix with an outer stride of 2d x stride, and the
-  // velocities another, d values on. A column's norm is summed as in the copied matrix of `costs`.
+  out.resize(keys.size());
+  // The key poses lie key after key, 2d values each: the positions of a run of consecutive keys are
+  // the columns of a d x run matrix with an outer stride of 2d, and the velocities another, d
+  // values on. A column's norm is summed as in the copied matrix of `costs`, whatever its
+  // neighbours.
   using Columns = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-  const double* base = g_.key_poses.data() + first * static_cast<std::size_t>(2 * d);
-  const Eigen::OuterStride<> outer(static_cast<Eigen::Index>(stride) * 2 * d);
-  const Columns positions(base, d, static_cast<Eigen::Index>(count), outer);
-  const Columns velocities(base + d, d, static_cast<Eigen::Index>(count), outer);
-  const Eigen::VectorXd pos = (positions.colwise() - a.head(d)).colwise().norm();
-  const Eigen::VectorXd vel = (velocities.colwise() - a.tail(d)).colwise().norm();
-  for (std::size_t k = 0; k < count; ++k)
-    out[k] = keys_[first + k * stride] == c ? 0.0
-                                            : (g_.params.lambda_pos * pos(static_cast<Eigen::Index>(k)) +
-                                               g_.params.lambda_vel * vel(static_cast<Eigen::Index>(k))) /
-                                                  normaliser_;
+  const Eigen::OuterStride<> outer(2 * d);
+  for (std::size_t from = 0; from < keys.size();) {
+    std::size_t to = from + 1;
+    while (to < keys.size() && keys[to] == keys[to - 1] + 1) ++to;
+    const Eigen::Index run = static_cast<Eigen::Index>(to - from);
+    const double* base = g_.key_poses.data() + keys[from] * static_cast<std::size_t>(2 * d);
+    // Up to 64 columns at a time into norms on the stack (a run of a sample's block, or a piece of
+    // a longer run): no allocation per run.
+    using Norms = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, 64>;
+    for (Eigen::Index at = 0; at < run; at += 64) {
+      const Eigen::Index cols = std::min<Eigen::Index>(64, run - at);
+      const Columns positions(base + at * 2 * d, d, cols, outer);
+      const Columns velocities(base + at * 2 * d + d, d, cols, outer);
+      const Norms pos = (positions.colwise() - a.head(d)).colwise().norm();
+      const Norms vel = (velocities.colwise() - a.tail(d)).colwise().norm();
+      for (Eigen::Index i = 0; i < cols; ++i) {
+        const std::size_t k = from + static_cast<std::size_t>(at + i);
+        out[k] =
+            keys_[keys[k]] == c ? 0.0 : (g_.params.lambda_pos * pos(i) + g_.params.lambda_vel * vel(i)) / normaliser_;
+      }
+    }
+    from = to;
+  }
 }
 
 double JunctionCost::largest_joint_gap(int a, int b) {

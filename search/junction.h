@@ -27,10 +27,11 @@ class JunctionCost {
   // J(c, s) for every s in `frames`, vectorised over a cached matrix of those frames' features.
   void costs(int c, const std::vector<int>& frames, std::vector<double>& out);
 
-  // J(c, s) for the key nodes first, first + stride, ... (count of them; indices into the graph's
-  // key frames), vectorised over the key poses where they lie in the graph, without copying them.
-  // Each value is the one `costs` gives for that key. Needs the graph's key poses (has_key_poses).
-  void key_costs(int c, std::size_t first, std::size_t stride, std::size_t count, std::vector<double>& out);
+  // J(c, s) for the key nodes `keys` (indices into the graph's key frames, ascending), vectorised
+  // over the key poses where they lie in the graph, a run of consecutive keys at a time, without
+  // copying them. Each value is the one `costs` gives for that key. Needs the graph's key poses
+  // (has_key_poses).
+  void key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out);
   bool has_key_poses() const { return !keys_.empty(); }
 
   // The largest root-relative joint distance (file units) between frames a and b: the raw pose

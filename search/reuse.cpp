@@ -62,6 +62,9 @@ void ReuseTracker::window_costs(int window, int time, const std::vector<int>& fr
   if (window < 1 || frames_ == 0) return;
   const int last = frames_ - 1;
   for (std::size_t k = 0; k < frames.size(); ++k) {
+    // A window whose frames lie in blocks never played costs 0 (most windows of a long reference).
+    const int from = std::min(frames[k], last), to = std::min(frames[k] + window - 1, last);
+    if (to - from < kBlock && !block(from) && !block(to)) continue;
     double worst = 0.0;
     for (int i = 0; i < window; ++i) worst = std::max(worst, frame_cost(std::min(frames[k] + i, last), time));
     out[k] = worst;
