@@ -98,7 +98,7 @@ TEST(SpeechMatch, EndingOnAKinematicBeatCostsNothing) {
 TEST(SpeechMatch, EndCostsComeFromTheGraph) {
   MotionGraph g = chain_graph(21, {}, {}, {});
   g.speech_dims = 2;
-  g.speech.assign(2 * 21, 0.0f);
+  g.speech.assign(std::size_t{2} * 21, 0.0f);
   for (int f = 0; f < 21; ++f) g.activity.push_back(1.0f + 0.05f * static_cast<float>(std::abs(f - 10)));
   const SpeechMatch computed(g, std::vector<float>(2, 0.0f), 1);
   std::vector<float> kept(21);
