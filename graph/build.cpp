@@ -16,6 +16,7 @@
 #include "graph/key_nodes.h"
 #include "graph/key_poses.h"
 #include "graph/pose_space.h"
+#include "graph/reference_facts.h"
 
 namespace gmg {
 
@@ -196,6 +197,7 @@ MotionGraph GraphBuild::finish(const BuildProgress& progress) {
   const std::vector<Transition> transitions = continuity_analysis(std::move(*s.space), s.theta, s.params, analysed);
   for (const Transition& t : transitions) builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
   g.graph = builder.finish();
+  add_reference_facts(g);
   return g;
 }
 

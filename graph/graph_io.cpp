@@ -1,25 +1,28 @@
 // Saving and loading built graphs.
 //
-// File format (version 4), little-endian:
+// File format (version 6), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
 //   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity, key poses
-//            (write_payload), the SMPL-X body (write_body: empty for BVH references)
+//            (write_payload), the reference facts (write_reference_facts: the assembly's capture
+//            facts and the frames' beat end costs, graph/reference_facts.h), the SMPL-X body
+//            (write_body: empty for BVH references)
 //   u64      checksum of the payload (engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The six largest (the
+// The large parts are flat arrays in the layout they have in memory. The eight largest (the
 // motion's rotations and translations, the speech features, the motion activity, the key
-// nodes' junction poses and the body's face) each start on a 4096-byte boundary of the file
-// (zero bytes pad up to it), so a loaded graph reads the first five in place from the file's
-// mapping (engine/core/files.h MappedFile): a load costs one checksum and validation pass, the
-// pages of the file are shared by every process that reads it, and none of them is kept resident
-// by the load. The face is copied (SmplxBody holds its own arrays; a graph from BVH references
-// has none). The edges and nodes, whose values index other arrays, are validated and copied (a
-// tenth of the file), so a file rewritten in place under a running gmg can give wrong values,
-// never an out-of-bounds read; the mapping then reports the change
-// (MotionGraph::check_unchanged). A file with another magic or version (older versions
-// included: 3 had no key poses and unaligned arrays, 4 no body), a short or over-long payload or
-// a wrong checksum is rejected before anything is used.
+// nodes' junction poses, the foot contacts, the beat end costs and the body's face) each start on
+// a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads the first
+// seven in place from the file's mapping (engine/core/files.h MappedFile): a load costs one checksum and validation
+// pass, the pages of the file are shared by every process that reads it, and none of them is kept resident by the load.
+// The face is copied (SmplxBody holds its own arrays; a graph from BVH references has none). The edges and nodes, whose
+// values index other arrays, are validated and copied (a tenth of the file), so a file rewritten in place under a
+// running gmg can give wrong values, never an out-of-bounds read; the mapping then reports the change
+// (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are
+// not stored: the load takes them from the nodes and edges it copies. A file with another magic
+// or version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
+// reference facts), a short or over-long payload or a wrong checksum is rejected before anything
+// is used.
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -30,6 +33,7 @@
 #include "engine/core/files.h"
 #include "engine/core/limits.h"
 #include "engine/core/strings.h"
+#include "engine/motion/body_parts.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 #include "graph/key_poses.h"
@@ -38,9 +42,8 @@ namespace gmg {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
-constexpr std::uint32_t kVersion = 5;  // 3: the reference speech features; 4: aligned arrays read in
-                                       // place; 5: and the SMPL-X body (shape, per-frame face)
-constexpr std::size_t kAlign = 4096;   // the sections read in place start at multiples of it
+constexpr std::uint32_t kVersion = kGraphFormatVersion;
+constexpr std::size_t kAlign = 4096;  // the sections read in place start at multiples of it
 constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -137,22 +140,26 @@ void in_chunks(const Source& src, const T* p, std::size_t n, const F& visit) {
   }
 }
 
+// Reads the payload front to back, adding every byte it takes to the checksum as it goes, so one
+// pass both checks and reads the file: the large arrays are validated chunk by chunk while they are
+// summed, and each chunk's pages are given back after it.
 class Reader {
  public:
-  Reader(const char* data, std::size_t size, const std::string& path) : data_(data), size_(size), path_(path) {}
+  Reader(const char* data, std::size_t size, const std::string& path, const Source& src)
+      : data_(data), size_(size), path_(path), src_(src) {}
   template <typename T>
   T pod() {
     need(sizeof(T));
     T v;
     std::memcpy(&v, data_ + pos_, sizeof(T));
-    pos_ += sizeof(T);
+    consume(sizeof(T));
     return v;
   }
   std::string str() {
     const std::uint32_t n = pod<std::uint32_t>();
     need(n);
     std::string s(data_ + pos_, n);
-    pos_ += n;
+    consume(n);
     return s;
   }
   // The count of a list of T, checked against the bytes left; the caller reads the items.
@@ -166,21 +173,26 @@ class Reader {
   std::vector<T> vec() {
     std::vector<T> v(count<T>());
     if (!v.empty()) std::memcpy(v.data(), data_ + pos_, v.size() * sizeof(T));
-    pos_ += v.size() * sizeof(T);
+    consume(v.size() * sizeof(T));
     return v;
   }
   // n items of T converted one by one (for arrays whose memory layout is not the file's).
   template <typename T, typename F>
   void items(std::size_t n, const F& take) {
     need(n * sizeof(T));
-    for (std::size_t i = 0; i < n; ++i) {
-      T v;
-      std::memcpy(&v, data_ + pos_ + i * sizeof(T), sizeof(T));
-      take(i, v);
+    constexpr std::size_t kChunk = 8192;
+    for (std::size_t i = 0; i < n; i += kChunk) {
+      const std::size_t m = std::min(kChunk, n - i);
+      for (std::size_t j = 0; j < m; ++j) {
+        T v;
+        std::memcpy(&v, data_ + pos_ + j * sizeof(T), sizeof(T));
+        take(i + j, v);
+      }
+      consume(m * sizeof(T));
     }
-    pos_ += n * sizeof(T);
   }
-  // A list written by Writer::aligned: its items, in place (they live as long as the bytes).
+  // The start of a list written by Writer::aligned: its count and zero padding. Its items are
+  // next, at the pointer returned; read them with in_place.
   template <typename T>
   std::pair<const T*, std::size_t> aligned() {
     const std::uint64_t n = pod<std::uint64_t>();
@@ -188,13 +200,29 @@ class Reader {
     need(pad);
     for (std::size_t i = 0; i < pad; ++i)
       if (data_[pos_ + i] != 0) fail("padding that is not zero");
-    pos_ += pad;
+    consume(pad);
     if (n > (size_ - pos_) / sizeof(T)) fail("a list is longer than the file");
+    return {reinterpret_cast<const T*>(data_ + pos_), static_cast<std::size_t>(n)};
+  }
+  // The n items of T that follow (an aligned list's): visit(chunk, first, count) over chunks of a
+  // few MB, each summed after its visit and its pages given back, so a pass over a large array
+  // does not leave it resident. The items stay readable in place (they live as long as the bytes).
+  template <typename T, typename F>
+  void in_place(std::size_t n, const F& visit) {
+    need(n * sizeof(T));
     const T* p = reinterpret_cast<const T*>(data_ + pos_);
-    pos_ += static_cast<std::size_t>(n) * sizeof(T);
-    return {p, static_cast<std::size_t>(n)};
+    constexpr std::size_t kChunk = (std::size_t{4} << 20) / sizeof(T);
+    for (std::size_t i = 0; i < n; i += kChunk) {
+      const std::size_t m = std::min(kChunk, n - i);
+      visit(p + i, i, m);
+      const std::size_t offset = static_cast<std::size_t>(data_ + pos_ - src_.data);
+      consume(m * sizeof(T));
+      src_.release(offset, m * sizeof(T));
+    }
   }
   bool done() const { return pos_ == size_; }
+  // The checksum of every byte read so far.
+  std::uint64_t checksum() const { return sum_.value(); }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(error_at_byte(path_, static_cast<long long>(pos_ + kHeader), "damaged graph file: " + what));
   }
@@ -203,10 +231,16 @@ class Reader {
   void need(std::size_t n) {
     if (n > size_ - pos_) fail("unexpected end of data");
   }
+  void consume(std::size_t n) {
+    sum_.add(data_ + pos_, n);
+    pos_ += n;
+  }
   const char* data_;
   std::size_t size_;
   std::size_t pos_ = 0;
   const std::string& path_;
+  const Source& src_;
+  Checksum sum_;
 };
 
 void write_params(Writer& w, const GraphParams& p) {
@@ -307,6 +341,22 @@ void write_body(Writer& w, const SmplxBody& b) {
   w.str(b.model);
 }
 
+// The reference facts (graph/reference_facts.h): whether they are known (0 for a graph made by
+// hand without them: then nothing else is), the largest root step, the root's extent (low, high),
+// the legs' knee hinges (u32 count, then 3 doubles each), the foot contacts (u8 a frame, aligned)
+// and the beat end costs (f32 a frame, aligned).
+void write_reference_facts(Writer& w, const MotionGraph& g) {
+  const CaptureFacts& c = g.capture;
+  w.pod<std::uint8_t>(c.known ? 1 : 0);
+  w.pod(c.largest_root_step);
+  w.pod(c.root_lo);
+  w.pod(c.root_hi);
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(c.knee_hinges.size()));
+  for (const glm::dvec3& h : c.knee_hinges) w.pod(h);
+  w.aligned(c.foot_flags.data(), c.foot_flags.size());
+  w.aligned(g.beat_cost.data(), g.beat_cost.size());
+}
+
 void write_payload(Writer& w, const MotionGraph& g) {
   write_params(w, g.params);
   write_skeleton(w, g.motion.skeleton);
@@ -343,6 +393,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
   w.aligned(g.key_poses);
+  write_reference_facts(w, g);
   write_body(w, g.body);
 }
 
@@ -355,7 +406,7 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (speech_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
     r.fail("speech features disagree with frames x features");
   bool finite = true;
-  in_chunks(src, speech, speech_n, [&](const float* p, std::size_t, std::size_t n) {
+  r.in_place<float>(speech_n, [&](const float* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a speech feature is not finite");
@@ -363,7 +414,7 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (activity_n != 0 && activity_n != static_cast<std::size_t>(g.motion.frame_count))
     r.fail("motion activity disagrees with the frame count");
   bool valid = true;
-  in_chunks(src, activity, activity_n, [&](const float* p, std::size_t, std::size_t n) {
+  r.in_place<float>(activity_n, [&](const float* p, std::size_t, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) valid = valid && std::isfinite(p[i]) && p[i] >= 0.0f;
   });
   if (!valid) r.fail("a motion activity is negative or not finite");
@@ -374,30 +425,77 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
 // The key nodes' junction poses: none, or keys x junction_pose_dims finite values.
 void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
   const auto [poses, n] = r.aligned<double>();
-  std::size_t keys = 0;
-  for (int f = 0; f < g.frame_count(); ++f) keys += g.is_key(f) ? 1 : 0;
-  if (n != 0 && n != keys * static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)))
+  if (n != 0 && n != g.keys.size() * static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)))
     r.fail("key poses disagree with key nodes x pose values");
   bool finite = true;
-  in_chunks(src, poses, n, [&](const double* p, std::size_t, std::size_t m) {
+  r.in_place<double>(n, [&](const double* p, std::size_t, std::size_t m) {
     for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a key pose value is not finite");
   g.key_poses = Samples<double>::view(poses, n, src.owner, src.file);
 }
 
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Reads write_reference_facts' section: all of it, or (a graph made by hand) none of it. Each
+// value is checked as the assembly and the planner use it.
+void read_reference_facts(Reader& r, const Source& src, MotionGraph& g) {
+  CaptureFacts& c = g.capture;
+  const std::uint8_t known = r.pod<std::uint8_t>();
+  if (known > 1) r.fail("the reference facts are neither known nor unknown");
+  c.known = known == 1;
+  c.largest_root_step = r.pod<double>();
+  c.root_lo = r.pod<glm::dvec3>();
+  c.root_hi = r.pod<glm::dvec3>();
+  const std::uint32_t legs = r.pod<std::uint32_t>();
+  if (!c.known && legs != 0) r.fail("the reference facts are unknown but describe legs");
+  const std::size_t skeleton_legs = c.known ? find_legs(g.motion.skeleton).size() : 0;
+  if (legs != skeleton_legs)
+    r.fail("the reference facts describe " + std::to_string(legs) + " legs, its skeleton has " +
+           std::to_string(skeleton_legs));
+  if (c.known && !(std::isfinite(c.largest_root_step) && c.largest_root_step >= 0.0))
+    r.fail("the largest root step is negative or not finite");
+  if (c.known && !(finite(c.root_lo) && finite(c.root_hi) && c.root_lo.x <= c.root_hi.x && c.root_lo.y <= c.root_hi.y &&
+                   c.root_lo.z <= c.root_hi.z))
+    r.fail("the root's extent is not finite or its low end lies above its high end");
+  for (std::uint32_t l = 0; l < legs; ++l) {
+    const glm::dvec3 h = r.pod<glm::dvec3>();
+    const double length = glm::length(h);
+    if (!finite(h) || !(length == 0.0 || std::abs(length - 1.0) <= 1e-9)) r.fail("a knee hinge is not a unit axis");
+    c.knee_hinges.push_back(h);
+  }
+  const std::size_t frames = static_cast<std::size_t>(g.frame_count());
+  const auto [flags, flags_n] = r.aligned<std::uint8_t>();
+  if (flags_n != (legs > 0 ? frames : 0)) r.fail("foot contacts disagree with the frame count");
+  const unsigned known_bits = (1u << (2 * legs)) - 1;
+  bool valid = true;
+  r.in_place<std::uint8_t>(flags_n, [&](const std::uint8_t* p, std::size_t, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) valid = valid && (p[i] & ~known_bits) == 0;
+  });
+  if (!valid) r.fail("a foot contact has bits of no leg");
+  c.foot_flags = Samples<std::uint8_t>::view(flags, flags_n, src.owner);
+  const auto [costs, costs_n] = r.aligned<float>();
+  if (costs_n != (c.known && !g.activity.empty() ? frames : 0)) r.fail("beat end costs disagree with the frame count");
+  r.in_place<float>(costs_n, [&](const float* p, std::size_t, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) valid = valid && p[i] >= 0.0f && p[i] <= 1.0f;
+  });
+  if (!valid) r.fail("a beat end cost is not a number from 0 to 1");
+  g.beat_cost = Samples<float>::view(costs, costs_n, src.owner);
+}
+
 // Reads write_body's section (the face is copied: SmplxBody owns its arrays).
-void read_body(Reader& r, const Source& src, MotionGraph& g) {
+void read_body(Reader& r, MotionGraph& g) {
   SmplxBody& b = g.body;
   const std::uint32_t dims = r.pod<std::uint32_t>();
   if (dims > 10000) r.fail("implausible face coefficient count");
   b.expression_dims = static_cast<int>(dims);
-  const auto [face, face_n] = r.aligned<double>();
+  const std::size_t face_n = r.aligned<double>().second;
   if (face_n != static_cast<std::size_t>(g.motion.frame_count) * dims)
     r.fail("the face disagrees with frames x coefficients");
   b.expressions.reserve(face_n);
-  in_chunks(src, face, face_n,
-            [&](const double* p, std::size_t, std::size_t n) { b.expressions.insert(b.expressions.end(), p, p + n); });
+  r.in_place<double>(face_n, [&](const double* p, std::size_t, std::size_t n) {
+    b.expressions.insert(b.expressions.end(), p, p + n);
+  });
   b.betas = r.vec<double>();
   if (b.betas.size() > 10000) r.fail("implausible betas count");
   for (const std::vector<double>* v : {&b.expressions, &b.betas})
@@ -407,14 +505,18 @@ void read_body(Reader& r, const Source& src, MotionGraph& g) {
   b.model = r.str();
 }
 
-std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
+// The nodes, and into g their index (MotionGraph::keys, breaks) taken on the way.
+std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames, MotionGraph& g) {
   std::vector<NodeInfo> nodes(frames);
   if (r.count<std::uint8_t>() != frames) r.fail("node count disagrees with the motion");
   bool unknown = false;
   r.items<std::uint8_t>(frames, [&](std::size_t f, std::uint8_t kinds) {
     nodes[f].kinds = kinds;
     unknown = unknown || (kinds & ~(kOnsetNode | kKeywordNode | kBreakNode)) != 0;
+    if (kinds != 0) g.keys.push_back(static_cast<int>(f));
+    if (kinds & kBreakNode) g.breaks.push_back(static_cast<int>(f));
   });
+  g.indexed = true;
   if (unknown) r.fail("a node has unknown kinds");
   const std::uint32_t labels = r.pod<std::uint32_t>();
   std::int64_t previous = -1;
@@ -431,7 +533,9 @@ std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames) {
   return nodes;
 }
 
-GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes) {
+// The edges, and the mean weight of the unnatural ones (MotionGraph::transition_weight, summed in
+// edge order as mean_transition_weight does).
+GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes, double& transition_weight) {
   std::vector<std::uint32_t> rowstart = r.vec<std::uint32_t>();
   const std::size_t e = r.count<std::uint32_t>();
   std::vector<std::size_t> targets(e);
@@ -445,7 +549,16 @@ GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes) {
   });
   if (invalid) r.fail("an edge weight is negative or not finite");
   if (r.count<std::uint8_t>() != e) r.fail("edge flags disagree with the edge count");
-  r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t natural) { edges[i].natural = natural != 0; });
+  double sum = 0.0;
+  long transitions = 0;
+  r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t natural) {
+    edges[i].natural = natural != 0;
+    if (!edges[i].natural) {
+      sum += edges[i].weight;
+      ++transitions;
+    }
+  });
+  transition_weight = transitions > 0 ? sum / static_cast<double>(transitions) : 0.0;
   try {
     return graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets), std::move(edges));
   } catch (const Error& err) {
@@ -479,20 +592,39 @@ void read_motion(Reader& r, const Source& src, Motion& m) {
     r.fail("frame rate " + format_number(m.fps) + " is outside " + format_number(limits::kMinFps) + " to " +
            format_number(limits::kMaxFps) + " fps");
   if (m.frame_count < 1 || m.frame_count > limits::kMaxFrames) r.fail("invalid frame count");
-  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
-  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
   const std::size_t joints = m.skeleton.joints.size();
   const std::size_t expected = static_cast<std::size_t>(m.frame_count) * joints;
-  if (rotations_n != expected || translations_n != expected) r.fail("motion size disagrees with frames x joints");
+  // Sizes are checked before values: the rotations' count, then the translations' (after the
+  // rotations' values, which lie between them).
+  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
+  if (rotations_n != expected) r.fail("motion size disagrees with frames x joints");
   std::size_t bad = expected;
-  in_chunks(src, rotations, expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
-    for (std::size_t k = 0; k < n && bad == expected; ++k)
-      if (!std::isfinite(q[k].w + q[k].x + q[k].y + q[k].z) || std::abs(glm::dot(q[k], q[k]) - 1.0) > 1e-6)
+  // A unit rotation: finite, its squared norm within 1e-6 of 1. Each chunk is checked as a whole
+  // (no early exit, so the loop vectorises) and searched for its first bad value only when it has one.
+  auto unit = [](const glm::dquat& q) {
+    return std::isfinite(q.w + q.x + q.y + q.z) && std::abs(glm::dot(q, q) - 1.0) <= 1e-6;
+  };
+  r.in_place<glm::dquat>(expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
+    if (bad != expected) return;
+    bool all = true;
+    for (std::size_t k = 0; k < n; ++k) all &= unit(q[k]);
+    for (std::size_t k = 0; k < n && !all; ++k)
+      if (!unit(q[k])) {
         bad = first + k;
+        break;
+      }
   });
-  in_chunks(src, translations, expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
-    for (std::size_t k = 0; k < n && first + k < bad; ++k)
-      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) bad = first + k;
+  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
+  if (translations_n != expected) r.fail("motion size disagrees with frames x joints");
+  r.in_place<glm::dvec3>(expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
+    if (first >= bad) return;
+    bool all = true;
+    for (std::size_t k = 0; k < n; ++k) all &= std::isfinite(t[k].x + t[k].y + t[k].z);
+    for (std::size_t k = 0; k < n && !all && first + k < bad; ++k)
+      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) {
+        bad = first + k;
+        break;
+      }
   });
   if (bad != expected)
     r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
@@ -519,11 +651,12 @@ MotionGraph read_payload(Reader& r, const Source& src) {
   g.clips = read_clips(r, covered);
   read_motion(r, src, g.motion);
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
-  g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count)));
+  g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g.transition_weight);
   check_natural_edges(r, g.graph);
   read_speech(r, src, g);
   read_key_poses(r, src, g);
-  read_body(r, src, g);
+  read_reference_facts(r, src, g);
+  read_body(r, g);
   if (!r.done()) r.fail("trailing bytes after the body");
   return g;
 }
@@ -548,14 +681,23 @@ MotionGraph parse_graph(const Source& src, const std::string& path) {
                                   " bytes declared, " + std::to_string(present) + " present)"));
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
-  Checksum checksum;
-  in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
-  if (sum != checksum.value()) {
+  auto damaged = [&] {
     if (src.file) src.file->check_unchanged();  // a file cut short while it was read reads as zeros
-    throw Error(path + ": graph file is damaged (checksum mismatch)");
+    return Error(path + ": graph file is damaged (checksum mismatch)");
+  };
+  // One pass checks the fields and sums the bytes (Reader). A damaged file may fail a field's check
+  // before its sum is known: then the whole file is summed, and a wrong checksum is what is said.
+  Reader r(bytes + kHeader, present, path, src);
+  try {
+    MotionGraph g = naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
+    if (r.checksum() != sum) throw damaged();
+    return g;
+  } catch (const Error&) {
+    Checksum checksum;
+    in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
+    if (sum != checksum.value()) throw damaged();
+    throw;
   }
-  Reader r(bytes + kHeader, present, path);
-  return naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
 }
 
 }  // namespace

@@ -1,11 +1,17 @@
 // Saving and loading built graphs (a versioned binary file with a checksum, "GMGRAPH" magic).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "graph/motion_graph.h"
 
 namespace gmg {
+
+// The graph file format this gmg writes and reads (graph_io.cpp): 3 added the reference speech
+// features, 4 aligned arrays read in place, 5 the SMPL-X body (shape, per-frame face), 6 the
+// reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h).
+constexpr std::uint32_t kGraphFormatVersion = 6;
 
 // Writes atomically. Throws gmg::Error naming the file when it cannot be written.
 void graph_save(const std::string& path, const MotionGraph& g);

@@ -24,6 +24,8 @@
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 
 #include "engine/core/files.h"
+#include "engine/motion/capture_facts.h"
+#include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
 #include "graph/params.h"
@@ -78,6 +80,19 @@ struct MotionGraph {
   // keys x junction_pose_dims values; empty for a graph made without them (the planner then
   // computes them from the motion).
   Samples<double> key_poses;
+  // Per-reference values that a reenactment would otherwise recompute from every frame, computed
+  // once (graph/reference_facts.h) and, but for the index and the transition scale, kept in the
+  // file: the key and break frames (in memory, from the nodes), the mean weight of the transitions,
+  // the capture facts of the assembly (root step and extent, foot contacts) and the end cost of
+  // every frame (the rhythm cost of stopping a path there: graph/beats.h; empty without activity).
+  // A graph made by hand without them (indexed false, capture.known false, beat_cost empty with an
+  // activity) has them computed where they are used.
+  std::vector<int> keys;           // key frames, ascending
+  std::vector<int> breaks;         // break frames, ascending
+  double transition_weight = 0.0;  // mean weight of the unnatural edges (0: none)
+  bool indexed = false;            // keys, breaks and transition_weight are those of the nodes and edges
+  CaptureFacts capture;
+  Samples<float> beat_cost;
   // The file a loaded graph is served from; null for a graph built in memory.
   std::shared_ptr<const MappedFile> source;
 
@@ -97,7 +112,8 @@ struct MotionGraph {
   }
   const NodeInfo& node(int frame) const { return graph[static_cast<std::size_t>(frame)]; }
   bool is_key(int frame) const { return node(frame).kinds != 0; }
-  // Key nodes of any kind, ascending.
+  // Key nodes of any kind, ascending (a scan of the nodes; graph/reference_facts.h graph_keys reads
+  // the index when there is one).
   std::vector<int> key_frames() const;
 };
 

@@ -3,41 +3,35 @@
 #include <algorithm>
 
 #include "graph/key_poses.h"
+#include "graph/reference_facts.h"
 
 namespace gmg {
 
 JunctionCost::JunctionCost(const MotionGraph& g) : g_(g) {
-  double sum = 0.0;
-  long count = 0;
-  for (auto [it, end] = boost::edges(g.graph); it != end; ++it)
-    if (!g.graph[*it].natural) {
-      sum += g.graph[*it].weight;
-      ++count;
-    }
-  // A graph without transitions has no scale of its own; 1 leaves d_pose as it is.
-  if (count > 0 && sum > 0.0) normaliser_ = sum / static_cast<double>(count);
-  if (!g.key_poses.empty()) keys_ = g.key_frames();
+  // The graph's mean transition weight (computed when it was built or loaded). A graph without
+  // transitions has no scale of its own; 1 leaves d_pose as it is.
+  const double mean = g.indexed ? g.transition_weight : mean_transition_weight(g.graph);
+  if (mean > 0.0) normaliser_ = mean;
+  if (!g.key_poses.empty()) keys_ = graph_keys(g);
 }
 
-const Eigen::VectorXd& JunctionCost::features(int f) {
-  const auto hit = cache_.find(f);
-  if (hit != cache_.end()) return hit->second;
+JunctionCost::Pose JunctionCost::features(int f) {
+  const Eigen::Index dims = junction_pose_dims(g_.motion.skeleton);
   // A key node's pose is in the graph (the same values junction_pose gives, computed when it was
   // built), so ranking the key nodes does not read the motion.
   const auto key = std::lower_bound(keys_.begin(), keys_.end(), f);
-  if (key != keys_.end() && *key == f) {
-    const Eigen::Index dims = junction_pose_dims(g_.motion.skeleton);
-    const double* p =
-        g_.key_poses.data() + static_cast<std::size_t>(key - keys_.begin()) * static_cast<std::size_t>(dims);
-    return cache_.emplace(f, Eigen::Map<const Eigen::VectorXd>(p, dims)).first->second;
-  }
-  return cache_.emplace(f, junction_pose(g_, f)).first->second;
+  if (key != keys_.end() && *key == f)
+    return Pose(g_.key_poses.data() + static_cast<std::size_t>(key - keys_.begin()) * static_cast<std::size_t>(dims),
+                dims);
+  auto hit = cache_.find(f);
+  if (hit == cache_.end()) hit = cache_.emplace(f, junction_pose(g_, f)).first;
+  return Pose(hit->second.data(), hit->second.size());
 }
 
 double JunctionCost::cost(int c, int s) {
   if (c == s) return 0.0;
-  const Eigen::VectorXd& a = features(c);
-  const Eigen::VectorXd& b = features(s);
+  const Pose a = features(c);
+  const Pose b = features(s);
   const Eigen::Index d = a.size() / 2;
   const double pose =
       g_.params.lambda_pos * (a.head(d) - b.head(d)).norm() + g_.params.lambda_vel * (a.tail(d) - b.tail(d)).norm();
@@ -45,14 +39,14 @@ double JunctionCost::cost(int c, int s) {
 }
 
 void JunctionCost::costs(int c, const std::vector<int>& frames, std::vector<double>& out) {
-  const Eigen::VectorXd& a = features(c);
+  const Pose a = features(c);
   const Eigen::Index d = a.size() / 2;
   if (frames != batch_frames_) {
     batch_frames_ = frames;
     batch_pos_.resize(d, static_cast<Eigen::Index>(frames.size()));
     batch_vel_.resize(d, static_cast<Eigen::Index>(frames.size()));
     for (std::size_t k = 0; k < frames.size(); ++k) {
-      const Eigen::VectorXd& b = features(frames[k]);
+      const Pose b = features(frames[k]);
       batch_pos_.col(static_cast<Eigen::Index>(k)) = b.head(d);
       batch_vel_.col(static_cast<Eigen::Index>(k)) = b.tail(d);
     }
@@ -67,9 +61,43 @@ void JunctionCost::costs(int c, const std::vector<int>& frames, std::vector<doub
                                   normaliser_;
 }
 
+void JunctionCost::key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out) {
+  const Pose a = features(c);
+  const Eigen::Index d = a.size() / 2;
+  out.resize(keys.size());
+  // The key poses lie key after key, 2d values each: the positions of a run of consecutive keys are
+  // the columns of a d x run matrix with an outer stride of 2d, and the velocities another, d
+  // values on. A column's norm is summed as in the copied matrix of `costs`, whatever its
+  // neighbours.
+  using Columns = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+  const Eigen::OuterStride<> outer(2 * d);
+  for (std::size_t from = 0; from < keys.size();) {
+    std::size_t to = from + 1;
+    while (to < keys.size() && keys[to] == keys[to - 1] + 1) ++to;
+    const Eigen::Index run = static_cast<Eigen::Index>(to - from);
+    const double* base = g_.key_poses.data() + keys[from] * static_cast<std::size_t>(2 * d);
+    // Up to 64 columns at a time into norms on the stack (a run of a sample's block, or a piece of
+    // a longer run): no allocation per run.
+    using Norms = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, 64>;
+    for (Eigen::Index at = 0; at < run; at += 64) {
+      const Eigen::Index cols = std::min<Eigen::Index>(64, run - at);
+      const Columns positions(base + at * 2 * d, d, cols, outer);
+      const Columns velocities(base + at * 2 * d + d, d, cols, outer);
+      const Norms pos = (positions.colwise() - a.head(d)).colwise().norm();
+      const Norms vel = (velocities.colwise() - a.tail(d)).colwise().norm();
+      for (Eigen::Index i = 0; i < cols; ++i) {
+        const std::size_t k = from + static_cast<std::size_t>(at + i);
+        out[k] =
+            keys_[keys[k]] == c ? 0.0 : (g_.params.lambda_pos * pos(i) + g_.params.lambda_vel * vel(i)) / normaliser_;
+      }
+    }
+    from = to;
+  }
+}
+
 double JunctionCost::largest_joint_gap(int a, int b) {
-  const Eigen::VectorXd& x = features(a);
-  const Eigen::VectorXd& y = features(b);
+  const Pose x = features(a);
+  const Pose y = features(b);
   double worst = 0.0;
   for (Eigen::Index j = 0; j + 2 < x.size() / 2; j += 3)
     worst = std::max(worst, (x.segment<3>(j) - y.segment<3>(j)).norm());

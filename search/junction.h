@@ -5,7 +5,7 @@
 // of its unnatural edges, so one unit of J is what a typical transition of this graph costs.
 // Features are computed on demand for the frames asked about (forward kinematics of a frame and
 // its neighbour, graph/key_poses.h), so a planning job on an hour-long graph does not pay for every
-// frame; those of the key nodes, which every subsequence ranks, come from the graph.
+// frame; those of the key nodes, which every subsequence ranks, are read in place from the graph.
 #pragma once
 
 #include <unordered_map>
@@ -24,9 +24,15 @@ class JunctionCost {
   // J(c, s); 0 when s is c.
   double cost(int c, int s);
 
-  // J(c, s) for every s in `frames`, vectorised over a cached matrix of those frames' features
-  // (the key nodes are ranked with it once per subsequence).
+  // J(c, s) for every s in `frames`, vectorised over a cached matrix of those frames' features.
   void costs(int c, const std::vector<int>& frames, std::vector<double>& out);
+
+  // J(c, s) for the key nodes `keys` (indices into the graph's key frames, ascending), vectorised
+  // over the key poses where they lie in the graph, a run of consecutive keys at a time, without
+  // copying them. Each value is the one `costs` gives for that key. Needs the graph's key poses
+  // (has_key_poses).
+  void key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out);
+  bool has_key_poses() const { return !keys_.empty(); }
 
   // The largest root-relative joint distance (file units) between frames a and b: the raw pose
   // gap a report shows.
@@ -35,8 +41,10 @@ class JunctionCost {
   double normaliser() const { return normaliser_; }
 
  private:
-  // Root-relative positions and velocity of frame f, as one column [lambda_pos p; lambda_vel v].
-  const Eigen::VectorXd& features(int f);
+  using Pose = Eigen::Map<const Eigen::VectorXd>;
+  // Root-relative positions and velocity of frame f, as one column [lambda_pos p; lambda_vel v]:
+  // in place in the graph for a key node, else computed once and cached.
+  Pose features(int f);
 
   const MotionGraph& g_;
   double normaliser_ = 1.0;

@@ -15,6 +15,8 @@ void search_params_validate(const SearchParams& p) {
   require_param(p.retries >= 0 && p.retries <= 100, "retries must be in [0, 100]");
   require_param(p.max_length_factor >= 1.1 && p.max_length_factor <= 10.0, "max_length_factor must be in [1.1, 10]");
   require_param(p.ignore_rounds >= 1 && p.ignore_rounds <= 100, "ignore_rounds must be in [1, 100]");
+  require_param(p.start_candidates >= 0 && p.start_candidates <= 100000000,
+                "start_candidates must be in [0, 100000000]");
   require_param(p.junction_rank >= 0 && p.junction_beam >= 0, "junction_rank and junction_beam must be >= 0");
   require_param(p.continue_min > 0 && p.continue_min <= 1.0 && p.continue_max >= 1.0 && p.continue_max <= 4.0,
                 "continue_min must be in (0, 1] and continue_max in [1, 4]");

@@ -46,6 +46,17 @@ struct SearchParams {
   InitMode init = InitMode::Feature;  // feature (paper 4.2.3) or random (weak initialisation)
   // Fallback 2 drops this growing share of stopping nodes per round: 0.25, 0.5, 0.75, 1.0.
   int ignore_rounds = 4;
+  // The most key nodes a subsequence ranks as start nodes (0: all of them). Ranking costs a
+  // subsequence time in proportion to the key nodes it weighs, so a graph with more ranks a sample of
+  // this many for each subsequence (search/initialisation.h: blocks of 64 consecutive key nodes,
+  // every stride-th block, the offset drawn per subsequence), and what ranking costs stops growing
+  // with the reference; with fewer every key node is ranked, exactly as before, so references of up
+  // to about 38 minutes (3.6 key nodes a second in the synthetic speaker; BEAT2's 63 s clip has 170,
+  // the 427 s speaker 1,543) plan as they did. 8192 against 16384: the mean path cost of 77 s of
+  // speech over 5 seeds was within 0.5 % at 1 h (4.765 against 4.770 ranking all 13,002) and at 4 h
+  // (4.720 against 4.705), at half the ranking time; 4096 raised it by 7 % (1 h) and 12 % (4 h)
+  // (docs/performance.md).
+  int start_candidates = 8192;
 
   // ---- natural planner only ----
   // Junction cost J(s) = d_pose(c, s) / (mean unnatural edge weight of the graph), c the frame the

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
+#include <utility>
 
 #include "search/continuation.h"
 #include "search/initialisation.h"
@@ -46,6 +49,11 @@ class Planner {
         reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps, params.reuse_cap_plays,
                static_cast<int>(std::lround(params.reuse_cap_window_s * g.motion.fps))) {
     if (natural_ && params.variety > 0.0) draw_preferences();
+    // Above start_candidates key nodes, each subsequence ranks a sample of them (candidates_of);
+    // one draw seeds the samples of the whole job. At or below it no draw is made, so a graph with
+    // no more key nodes plans exactly as when every key node was ranked.
+    const std::size_t cap = static_cast<std::size_t>(params.start_candidates);
+    if (cap > 0 && index_.keys.size() > cap) sample_seed_ = rng_();
   }
 
   Plan run() {
@@ -62,6 +70,9 @@ class Planner {
       previous_clean = seg.accepted && seg.fallback == Fallback::None;
       previous_path = seg.path;
       plan.segments.push_back(std::move(seg));
+      // The junction poses of this subsequence were read from the motion here and there: give
+      // those pages back (a graph served from its file keeps only what is read next resident).
+      motion_release_pages(g_.motion);
     }
     return plan;
   }
@@ -99,34 +110,151 @@ class Planner {
   // [10, 60] frames (shorter says little, longer is beyond what the path will play).
   static int window_of(const Subsequence& sub) { return std::clamp(sub.length, 10, 60); }
 
-  // Start nodes of attempt `round` with their estimated costs (natural planner).
-  void ranked_starts(std::size_t k, int round, BeamRequest& request) {
-    const std::vector<double>* estimate = nullptr;
-    if (natural_) {
-      estimate_start_costs(subs_[k]);
-      estimate = &key_costs_;
+  // The key nodes subsequence k ranks as start nodes (initialisation.h start_candidate_sample),
+  // their estimated costs and their ranking. `prune`: the junction and speech costs, the dearest
+  // parts, are computed only for the candidates that can rank among the first exact_ranks_
+  // (rank_pruned).
+  void candidates_of(std::size_t k, bool prune = true) {
+    std::vector<std::size_t> candidates =
+        start_candidate_sample(index_.keys.size(), params_.start_candidates, sample_seed_, k);
+    const std::size_t n = candidates.size();
+    candidate_frames_.resize(n);
+    for (std::size_t m = 0; m < n; ++m) candidate_frames_[m] = index_.keys[candidates[m]];
+    ranking_for_ = k;
+    exact_ranks_ = n;
+    if (!natural_) {
+      ranking_ = StartRanking(index_, k, std::move(candidates), nullptr, params_);
+      return;
     }
-    request.start_nodes = initialisation_start_nodes(g_, index_, k, round, params_, rng_, estimate);
-    starts_cost(request);
+    const Subsequence& sub = subs_[k];
+    speech_part_.assign(n, 0.0);
+    reuse_part_.assign(n, 0.0);
+    if (params_.reuse_weight > 0.0) reuse_.window_costs(window_of(sub), sub.start, candidate_frames_, reuse_part_);
+    std::vector<double> distance = feature_distances(index_, k, candidates, params_);
+    if (prune && n > 0) {
+      rank_pruned(candidates, distance);
+    } else {
+      if (speeching()) speech_.window_costs(sub.start, window_of(sub), candidate_frames_, speech_part_);
+      std::vector<double> j;
+      if (junction() && junction_.has_key_poses())
+        junction_.key_costs(reference_, candidates, j);
+      else if (junction())
+        junction_.costs(reference_, candidate_frames_, j);
+      for (std::size_t m = 0; m < n; ++m) distance[m] += params_.junction_rank * start_cost(m, &j, m, true);
+    }
+    ranking_ = StartRanking(std::move(candidates), std::move(distance), params_);
   }
 
-  // Per key node: junction_beam * J + speech_weight * speech window + reuse_weight * reuse window.
-  void estimate_start_costs(const Subsequence& sub) {
-    key_costs_.assign(index_.keys.size(), 0.0);
-    if (reference_ >= 0 && params_.junction_beam > 0.0) {
-      junction_.costs(reference_, index_.keys, scratch_);
-      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.junction_beam * scratch_[m];
+  bool junction() const { return reference_ >= 0 && params_.junction_beam > 0.0; }
+  bool speeching() const { return speech_.active() && params_.speech_weight > 0.0; }
+
+  // A candidate's estimated start cost: junction_beam * J ((*j)[at]; none when j is null) + speech_weight
+  // * speech window (when `speech`; speech_part_) + reuse_weight * reuse window (reuse_part_) + its
+  // preference, summed in that order. Costs are not negative and rounding keeps a sum at least any
+  // of its partial sums, so the cost without J, or without J and speech, is never above the whole.
+  double start_cost(std::size_t m, const std::vector<double>* j, std::size_t at, bool speech) const {
+    double cost = 0.0;
+    if (j && !j->empty()) cost += params_.junction_beam * (*j)[at];
+    if (speech && speeching()) cost += params_.speech_weight * speech_part_[m];
+    if (params_.reuse_weight > 0.0) cost += params_.reuse_weight * reuse_part_[m];
+    if (candidate_frames_[m] != reference_) cost += preference(candidate_frames_[m]);
+    return cost;
+  }
+
+  // Ranking distances (d_feat in `distance` on entry) exact for the first exact_ranks_ ranks: a
+  // subsequence's attempts are at most retries + 1 (fallbacks start again from the first rank).
+  // A candidate's distance without its junction cost, or without its junction and speech costs,
+  // bounds it from below, so one whose bound exceeds the exact_ranks_-th lowest distance found so
+  // far cannot rank among the first exact_ranks_: its costs are not computed and its distance is
+  // left infinite. The candidates of lowest bound come first (so the bar is low early), then the
+  // others in blocks of consecutive key nodes, whose poses are read as one stretch.
+  void rank_pruned(const std::vector<std::size_t>& candidates, std::vector<double>& distance) {
+    const std::size_t n = candidates.size();
+    const Subsequence& sub = subs_[ranking_for_];
+    exact_ranks_ =
+        std::min(n, static_cast<std::size_t>(params_.retries + 1) * static_cast<std::size_t>(params_.l_npaths));
+    std::vector<double> cheap(n);  // the bound without junction and speech
+    for (std::size_t m = 0; m < n; ++m)
+      cheap[m] = distance[m] + params_.junction_rank * start_cost(m, nullptr, m, false);
+    std::vector<std::pair<double, std::size_t>> best;  // max-heap: the exact_ranks_ lowest so far
+    std::vector<char> done(n, 0);
+    std::vector<std::size_t> some;
+    std::vector<int> frames;
+    std::vector<double> part, j;
+    // The full distances of `some` (ascending), pruned again by the bound with speech.
+    auto complete = [&](const std::vector<std::size_t>& group) {
+      frames.clear();
+      for (std::size_t m : group) frames.push_back(candidate_frames_[m]);
+      if (speeching()) {
+        speech_.window_costs(sub.start, window_of(sub), frames, part);
+        for (std::size_t i = 0; i < group.size(); ++i) speech_part_[group[i]] = part[i];
+      }
+      const double bar = best.size() < exact_ranks_ ? std::numeric_limits<double>::infinity() : best.front().first;
+      std::vector<std::size_t> keys, at;
+      for (std::size_t m : group)
+        if (distance[m] + params_.junction_rank * start_cost(m, nullptr, m, true) <= bar) {
+          keys.push_back(candidates[m]);
+          at.push_back(m);
+        }
+      j.clear();
+      if (junction() && junction_.has_key_poses()) {
+        junction_.key_costs(reference_, keys, j);
+      } else if (junction()) {  // a graph made without key poses
+        frames.clear();
+        for (std::size_t m : at) frames.push_back(candidate_frames_[m]);
+        junction_.costs(reference_, frames, j);
+      }
+      std::size_t next = 0;
+      for (std::size_t m : group) {
+        done[m] = 1;
+        if (next < at.size() && at[next] == m) {
+          distance[m] += params_.junction_rank * start_cost(m, &j, next++, true);
+          best.emplace_back(distance[m], m);
+          std::push_heap(best.begin(), best.end());
+          if (best.size() > exact_ranks_) {
+            std::pop_heap(best.begin(), best.end());
+            best.pop_back();
+          }
+        } else {
+          distance[m] = std::numeric_limits<double>::infinity();
+        }
+      }
+    };
+    // First the 4 x exact_ranks_ candidates of lowest cheap bound.
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    const std::size_t first = std::min(n, 4 * exact_ranks_);
+    std::nth_element(
+        order.begin(), order.begin() + static_cast<std::ptrdiff_t>(first - 1), order.end(),
+        [&](std::size_t a, std::size_t b) { return cheap[a] < cheap[b] || (cheap[a] == cheap[b] && a < b); });
+    some.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(first));
+    std::sort(some.begin(), some.end());
+    complete(some);
+    // Then the rest in blocks, each candidate only when its cheap bound does not exceed the bar.
+    for (std::size_t from = 0; from < n; from += kCandidateBlock) {
+      const double bar = best.size() < exact_ranks_ ? std::numeric_limits<double>::infinity() : best.front().first;
+      some.clear();
+      for (std::size_t m = from; m < std::min(n, from + kCandidateBlock); ++m) {
+        if (done[m]) continue;
+        if (cheap[m] <= bar)
+          some.push_back(m);
+        else
+          distance[m] = std::numeric_limits<double>::infinity();
+      }
+      if (!some.empty()) complete(some);
     }
-    if (speech_.active() && params_.speech_weight > 0.0) {
-      speech_.window_costs(sub.start, window_of(sub), index_.keys, scratch_);
-      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.speech_weight * scratch_[m];
-    }
-    if (params_.reuse_weight > 0.0) {
-      reuse_.window_costs(window_of(sub), sub.start, index_.keys, scratch_);
-      for (std::size_t m = 0; m < scratch_.size(); ++m) key_costs_[m] += params_.reuse_weight * scratch_[m];
-    }
-    for (std::size_t m = 0; m < index_.keys.size(); ++m)
-      if (index_.keys[m] != reference_) key_costs_[m] += preference(index_.keys[m]);
+  }
+
+  // Start nodes of attempt `round` with their estimated costs (natural planner). The ranking of a
+  // subsequence's candidates is made once: nothing it depends on changes before its path is chosen.
+  // Ranks beyond those the pruned ranking holds exactly (more attempts than retries + 1) rank every
+  // candidate in full.
+  void ranked_starts(std::size_t k, int round, BeamRequest& request) {
+    const std::size_t needed = static_cast<std::size_t>(round + 1) * static_cast<std::size_t>(params_.l_npaths);
+    if (ranking_for_ != k) candidates_of(k);
+    if (needed > exact_ranks_ && exact_ranks_ < candidate_frames_.size()) candidates_of(k, false);
+    request.start_nodes = ranking_.start_nodes(g_, index_, round, params_, rng_);
+    starts_cost(request);
   }
 
   void starts_cost(BeamRequest& request) {
@@ -325,7 +453,13 @@ class Planner {
     }
     // Fallback 3 (and the failure case, which must still produce frames): hold the previous
     // result's last frame, or for the very first subsequence the best start node.
-    const int hold = last >= 0 ? last : initialisation_start_nodes(g_, index_, k, 0, params_, rng_, nullptr).front();
+    int hold = last;
+    if (hold < 0)
+      hold =
+          StartRanking(index_, k, start_candidate_sample(index_.keys.size(), params_.start_candidates, sample_seed_, k),
+                       nullptr, params_)
+              .start_nodes(g_, index_, 0, params_, rng_)
+              .front();
     seg.path.assign(1, hold);
     return seg;
   }
@@ -351,11 +485,16 @@ class Planner {
   JunctionCost junction_;
   SpeechMatch speech_;
   ReuseTracker reuse_;
-  int reference_ = -1;             // the current subsequence's junction reference frame
-  int continuing_from_ = -1;       // the natural successor of the previous path, or -1
-  std::vector<double> key_costs_;  // estimated start cost of every key node
-  std::vector<double> scratch_;
-  std::vector<double> preference_;  // per block of the reference: the seed's preference
+  int reference_ = -1;        // the current subsequence's junction reference frame
+  int continuing_from_ = -1;  // the natural successor of the previous path, or -1
+  // The ranking of subsequence ranking_for_'s candidates (candidates_of), and its estimates.
+  std::size_t ranking_for_ = static_cast<std::size_t>(-1);
+  StartRanking ranking_;
+  std::uint64_t sample_seed_ = 0;
+  std::vector<int> candidate_frames_;
+  std::size_t exact_ranks_ = 0;                   // ranks of ranking_ that are exact (all of them unless pruned)
+  std::vector<double> speech_part_, reuse_part_;  // per candidate: its speech and reuse windows
+  std::vector<double> preference_;                // per block of the reference: the seed's preference
   int block_ = 1;
 };
 

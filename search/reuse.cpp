@@ -7,29 +7,43 @@
 namespace gmg {
 
 ReuseTracker::ReuseTracker(int frames, double halflife, int cap_plays, int cap_window)
-    : count_(static_cast<std::size_t>(std::max(0, frames)), 0.0),
-      last_(count_.size(), 0),
+    : frames_(std::max(0, frames)),
       decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)),
       cap_plays_(std::max(0, cap_plays)),
       cap_window_(std::max(0, cap_window)),
-      // Never played: a time so early that no window reaches it.
-      recent_(count_.size() * static_cast<std::size_t>(cap_plays_), std::numeric_limits<int>::min() / 2) {}
+      blocks_(static_cast<std::size_t>(frames_ / kBlock + 1)) {}
+
+ReuseTracker::Block& ReuseTracker::block_to_play(int f) {
+  std::unique_ptr<Block>& b = blocks_[static_cast<std::size_t>(f / kBlock)];
+  if (!b) {
+    b = std::make_unique<Block>();
+    b->count.assign(kBlock, 0.0);
+    b->last.assign(kBlock, 0);
+    // Never played: a time so early that no window reaches it.
+    b->recent.assign(static_cast<std::size_t>(kBlock) * static_cast<std::size_t>(cap_plays_),
+                     std::numeric_limits<int>::min() / 2);
+  }
+  return *b;
+}
 
 double ReuseTracker::plays(int f, int time) const {
-  const std::size_t k = static_cast<std::size_t>(f);
-  if (count_[k] == 0.0) return 0.0;
-  return count_[k] * std::exp(-decay_per_frame_ * std::max(0, time - last_[k]));
+  const Block* b = block(f);
+  const std::size_t k = static_cast<std::size_t>(f % kBlock);
+  if (!b || b->count[k] == 0.0) return 0.0;
+  return b->count[k] * std::exp(-decay_per_frame_ * std::max(0, time - b->last[k]));
 }
 
 void ReuseTracker::play(const std::vector<int>& path, int time) {
   int previous = -1;
   for (int f : path) {
     if (f == previous) continue;  // a held frame is one play
-    const std::size_t k = static_cast<std::size_t>(f);
-    count_[k] = plays(f, time) + 1.0;
-    last_[k] = time;
+    const double p = plays(f, time);
+    Block& b = block_to_play(f);
+    const std::size_t k = static_cast<std::size_t>(f % kBlock);
+    b.count[k] = p + 1.0;
+    b.last[k] = time;
     if (cap_plays_ > 0) {
-      int* times = recent_.data() + k * static_cast<std::size_t>(cap_plays_);
+      int* times = b.recent.data() + k * static_cast<std::size_t>(cap_plays_);
       std::copy(times + 1, times + cap_plays_, times);
       times[cap_plays_ - 1] = time;
     }
@@ -45,9 +59,12 @@ double ReuseTracker::path_cost(const std::vector<int>& path, int time) const {
 
 void ReuseTracker::window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const {
   out.assign(frames.size(), 0.0);
-  if (window < 1 || count_.empty()) return;
-  const int last = static_cast<int>(count_.size()) - 1;
+  if (window < 1 || frames_ == 0) return;
+  const int last = frames_ - 1;
   for (std::size_t k = 0; k < frames.size(); ++k) {
+    // A window whose frames lie in blocks never played costs 0 (most windows of a long reference).
+    const int from = std::min(frames[k], last), to = std::min(frames[k] + window - 1, last);
+    if (to - from < kBlock && !block(from) && !block(to)) continue;
     double worst = 0.0;
     for (int i = 0; i < window; ++i) worst = std::max(worst, frame_cost(std::min(frames[k] + i, last), time));
     out[k] = worst;

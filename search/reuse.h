@@ -14,6 +14,7 @@
 // costs kCapCost more, far above any speech distance or junction it could save.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace gmg {
@@ -36,8 +37,10 @@ class ReuseTracker {
   // Whether frame f has had cap_plays plays within cap_window output frames before `time`.
   bool capped(int f, int time) const {
     if (cap_plays_ <= 0) return false;
-    // recent_ holds f's last cap_plays play times, oldest first.
-    return recent_[static_cast<std::size_t>(f) * static_cast<std::size_t>(cap_plays_)] > time - cap_window_;
+    const Block* b = block(f);
+    // recent holds f's last cap_plays play times, oldest first.
+    return b &&
+           b->recent[static_cast<std::size_t>(f % kBlock) * static_cast<std::size_t>(cap_plays_)] > time - cap_window_;
   }
 
   // Its cost: plays squared, plus kCapCost when capped.
@@ -54,12 +57,23 @@ class ReuseTracker {
   void window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const;
 
  private:
-  std::vector<double> count_;  // at time last_[f]
-  std::vector<int> last_;
+  // The play counts are kept for blocks of kBlock frames, a block made when one of its frames is
+  // first played: a reenactment plays a few thousand frames of a reference of any length, so the
+  // tracker costs no work or memory per reference frame.
+  static constexpr int kBlock = 4096;
+  struct Block {
+    std::vector<double> count;  // at time last[f]
+    std::vector<int> last;
+    std::vector<int> recent;  // per frame, its last cap_plays_ play times, oldest first
+  };
+  const Block* block(int f) const { return blocks_[static_cast<std::size_t>(f / kBlock)].get(); }
+  Block& block_to_play(int f);
+
+  int frames_;
   double decay_per_frame_;  // ln 2 / halflife
   int cap_plays_;
   int cap_window_;
-  std::vector<int> recent_;  // per frame, its last cap_plays_ play times, oldest first
+  std::vector<std::unique_ptr<Block>> blocks_;
 };
 
 }  // namespace gmg

@@ -5,6 +5,8 @@
 
 #include "audio/speech_features.h"
 #include "engine/core/error.h"
+#include "graph/beats.h"
+#include "graph/reference_facts.h"
 
 namespace gmg {
 namespace {
@@ -27,13 +29,11 @@ SpeechMatch::SpeechMatch(const MotionGraph& g, const std::vector<float>& test, i
     const float loudness = test[static_cast<std::size_t>(t) * static_cast<std::size_t>(g.speech_dims)];
     pause_[static_cast<std::size_t>(t)] = audio::pause_weight(loudness);
   }
-  run_last_.resize(static_cast<std::size_t>(g.frame_count()));
-  int last = g.frame_count() - 1;
-  for (int f = g.frame_count() - 1; f >= 0; --f) {
-    if (g.node(f).kinds & kBreakNode) last = f;
-    run_last_[static_cast<std::size_t>(f)] = last;
-  }
-  if (g.activity.size() == static_cast<std::size_t>(g.frame_count())) beat_costs();
+  runs_ = graph_runs(g);
+  if (g.activity.size() == static_cast<std::size_t>(g.frame_count()))
+    end_cost_ = g.beat_cost.size() == g.activity.size()
+                    ? g.beat_cost
+                    : Samples<float>(beat_end_costs(g.activity, runs_, g.motion.fps));
   // The scale: the mean feature distance of test and reference frames paired at random (4096
   // pairs spread over both, deterministic), so 1 is what a stretch unrelated to the speech costs,
   // whatever the recordings, and speech_weight compares with the junction cost (1 = a typical
@@ -57,38 +57,6 @@ double SpeechMatch::feature_cost(int t, int f) const {
     sum += dim_weight(d) * x * x;
   }
   return sum;
-}
-
-void SpeechMatch::beat_costs() {
-  constexpr int kOrder = 4;
-  constexpr float kMinActivity = 0.3f;
-  constexpr double kSigmaS = 0.1;
-  const int n = g_.frame_count();
-  const Samples<float>& a = g_.activity;
-  std::vector<int> beats;
-  for (int f = 0; f < n; ++f) {
-    if (!(a[static_cast<std::size_t>(f)] > kMinActivity)) continue;
-    bool minimum = true;
-    const int last = run_last_[static_cast<std::size_t>(f)];
-    for (int k = 1; k <= kOrder && minimum; ++k) {
-      const int lo = f - k, hi = f + k;
-      minimum = lo >= 0 && hi <= last && run_last_[static_cast<std::size_t>(lo)] == last &&
-                a[static_cast<std::size_t>(f)] < a[static_cast<std::size_t>(lo)] &&
-                a[static_cast<std::size_t>(f)] < a[static_cast<std::size_t>(hi)];
-    }
-    if (minimum) beats.push_back(f);
-  }
-  end_cost_.assign(static_cast<std::size_t>(n), 1.0f);
-  const double two_sigma2 = 2.0 * (kSigmaS * g_.motion.fps) * (kSigmaS * g_.motion.fps);
-  std::size_t b = 0;
-  for (int f = 0; f < n; ++f) {
-    while (b + 1 < beats.size() && beats[b + 1] <= f) ++b;
-    double d = 1e9;
-    for (std::size_t k = b; k < std::min(beats.size(), b + 2); ++k)
-      if (run_last_[static_cast<std::size_t>(beats[k])] == run_last_[static_cast<std::size_t>(f)])
-        d = std::min(d, std::abs(static_cast<double>(beats[k] - f)));
-    end_cost_[static_cast<std::size_t>(f)] = static_cast<float>(1.0 - std::exp(-d * d / two_sigma2));
-  }
 }
 
 double SpeechMatch::end_cost(int f) const {
@@ -120,7 +88,7 @@ void SpeechMatch::window_costs(int start, int window, const std::vector<int>& fr
   if (!active_ || window < 1) return;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const int s = frames[k];
-    const int last = run_last_[static_cast<std::size_t>(s)];
+    const int last = runs_.last(s);
     double sum = 0.0;
     for (int i = 0; i < window; ++i) sum += frame_cost(start + i, std::min(s + i, last));
     out[k] = sum / window;

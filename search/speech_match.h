@@ -16,6 +16,7 @@
 
 #include <vector>
 
+#include "engine/motion/capture_runs.h"
 #include "graph/motion_graph.h"
 
 namespace gmg {
@@ -38,8 +39,8 @@ class SpeechMatch {
   // What ending a path at graph frame f costs the rhythm: 1 - exp(-d^2 / (2 * 0.1 s^2)), d the time
   // from f to the nearest kinematic beat of the reference in its capture run (a local minimum of
   // its upper-body activity over +-4 frames, above 0.3 of its typical activity: the end of a
-  // stroke). The stop node lands on the test's onset, so a path that ends on a beat puts the
-  // motion's beat on the speech's (EMAGE-style beat consistency); 0 without activity.
+  // stroke; graph/beats.h). The stop node lands on the test's onset, so a path that ends on a beat
+  // puts the motion's beat on the speech's (EMAGE-style beat consistency); 0 without activity.
   double end_cost(int f) const;
 
   // For every graph frame s of `frames`: the mean cost of test frames [start, start + window)
@@ -48,7 +49,6 @@ class SpeechMatch {
   void window_costs(int start, int window, const std::vector<int>& frames, std::vector<double>& out) const;
 
  private:
-  void beat_costs();
   double feature_cost(int t, int f) const;  // unscaled
 
   const MotionGraph& g_;
@@ -56,10 +56,12 @@ class SpeechMatch {
   int test_frames_ = 0;
   bool active_ = false;
   double rest_weight_ = 0.0;
-  double scale_ = 1.0;           // 1 / the mean feature cost of random pairs
-  std::vector<float> pause_;     // per test frame: how much it is a pause, 0..1
-  std::vector<int> run_last_;    // per graph frame: the last frame of its capture run
-  std::vector<float> end_cost_;  // per graph frame (end_cost)
+  double scale_ = 1.0;        // 1 / the mean feature cost of random pairs
+  std::vector<float> pause_;  // per test frame: how much it is a pause, 0..1
+  CaptureRuns runs_;          // the graph's capture runs
+  // Per graph frame (end_cost): the graph's own (MotionGraph::beat_cost, read in place), or
+  // computed here for a graph made without them.
+  Samples<float> end_cost_;
 };
 
 }  // namespace gmg

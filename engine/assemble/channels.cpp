@@ -18,8 +18,8 @@ using Values = std::vector<glm::dvec3>;
 // translations, so a channel is read exactly where and how a translation is.
 class ChannelReader {
  public:
-  ChannelReader(const std::vector<double>& values, int dims, const std::vector<char>& continues)
-      : values_(values), dims_(dims), groups_((dims + 2) / 3), runs_(continues) {}
+  ChannelReader(const std::vector<double>& values, int dims, const CaptureRuns& runs)
+      : values_(values), dims_(dims), groups_((dims + 2) / 3), runs_(runs) {}
 
   int groups() const { return groups_; }
 
@@ -52,7 +52,7 @@ class ChannelReader {
 
   const std::vector<double>& values_;
   int dims_, groups_;
-  CaptureRuns runs_;
+  const CaptureRuns& runs_;
 };
 
 void check_values(const std::vector<double>& values, int dims, std::size_t frames) {
@@ -69,10 +69,15 @@ void append_group_values(const Values& v, int dims, std::vector<double>& out) {
 std::vector<double> assemble_channels_inertialized(const std::vector<double>& values, int dims,
                                                    const std::vector<char>& continues,
                                                    const std::vector<PathPiece>& pieces, double halflife_frames) {
-  check_values(values, dims, continues.size());
+  return assemble_channels_inertialized(values, dims, CaptureRuns(continues), pieces, halflife_frames);
+}
+
+std::vector<double> assemble_channels_inertialized(const std::vector<double>& values, int dims, const CaptureRuns& runs,
+                                                   const std::vector<PathPiece>& pieces, double halflife_frames) {
+  check_values(values, dims, static_cast<std::size_t>(runs.frame_count()));
   if (!(halflife_frames > 0.0)) throw Error("assemble: transition_halflife must be > 0");
-  const std::vector<SourceClock> clock = source_timeline(pieces, continues);
-  const ChannelReader reader(values, dims, continues);
+  const std::vector<SourceClock> clock = source_timeline(pieces, runs);
+  const ChannelReader reader(values, dims, runs);
   const double y = spring_damping(halflife_frames);
   const auto groups = static_cast<std::size_t>(reader.groups());
   Values off(groups, glm::dvec3(0.0)), off_vel(off);

@@ -17,9 +17,12 @@
 
 namespace gmg {
 
-// `values`: source frames x dims, frame-major (dims >= 1; continues.size() source frames).
+// `values`: source frames x dims, frame-major (dims >= 1; runs.frame_count() source frames).
 // Returns the pieces' total length x dims, frame-major. halflife_frames > 0 (the motion's
 // params.halflife_s * fps).
+std::vector<double> assemble_channels_inertialized(const std::vector<double>& values, int dims, const CaptureRuns& runs,
+                                                   const std::vector<PathPiece>& pieces, double halflife_frames);
+// The same with `continues[f]`: source frame f is naturally followed by f + 1.
 std::vector<double> assemble_channels_inertialized(const std::vector<double>& values, int dims,
                                                    const std::vector<char>& continues,
                                                    const std::vector<PathPiece>& pieces, double halflife_frames);

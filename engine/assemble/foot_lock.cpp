@@ -5,53 +5,13 @@
 #include <limits>
 
 #include "engine/assemble/inertialize.h"
+#include "engine/core/error.h"
 #include "engine/motion/rotation.h"
 
 namespace gmg {
 namespace {
 
-constexpr double kContactSpeed = 0.15;   // leg lengths per second
-constexpr double kContactHeight = 0.10;  // leg lengths above the run's lowest point
-constexpr int kMinRun = 3;               // frames: shorter contacts or gaps are noise
-constexpr double kStepLift = 0.12;       // leg lengths: the highest step (10 cm for a 0.85 m leg)
-
-// Joints from the root down to j.
-std::vector<int> chain_to(const Skeleton& s, int j) {
-  std::vector<int> chain;
-  for (int k = j; k >= 0; k = s.joints[static_cast<std::size_t>(k)].parent) chain.push_back(k);
-  std::reverse(chain.begin(), chain.end());
-  return chain;
-}
-
-// World rotation and position of every joint of `chain` at frame f.
-void chain_world(const Motion& m, int f, const std::vector<int>& chain, std::vector<glm::dquat>& rot,
-                 std::vector<glm::dvec3>& pos) {
-  rot.resize(chain.size());
-  pos.resize(chain.size());
-  for (std::size_t k = 0; k < chain.size(); ++k) {
-    const glm::dquat& q = m.rotation(f, chain[k]);
-    const glm::dvec3& t = m.translation(f, chain[k]);
-    if (k == 0) {
-      rot[k] = q;
-      pos[k] = t;
-    } else {
-      pos[k] = pos[k - 1] + rot[k - 1] * t;
-      rot[k] = rot[k - 1] * q;
-    }
-  }
-}
-
-// Fills gaps and removes runs of `value` shorter than kMinRun.
-void drop_short_runs(std::vector<char>& flags, char value) {
-  for (std::size_t i = 0; i < flags.size();) {
-    std::size_t j = i;
-    while (j < flags.size() && flags[j] == flags[i]) ++j;
-    if (flags[i] == value && j - i < static_cast<std::size_t>(kMinRun))
-      std::fill(flags.begin() + static_cast<std::ptrdiff_t>(i), flags.begin() + static_cast<std::ptrdiff_t>(j),
-                static_cast<char>(!value));
-    i = j;
-  }
-}
+constexpr double kStepLift = 0.12;  // leg lengths: the highest step (10 cm for a 0.85 m leg)
 
 glm::dquat rotation_between(const glm::dvec3& from, const glm::dvec3& to) {
   const glm::dvec3 a = glm::normalize(from), b = glm::normalize(to);
@@ -111,52 +71,28 @@ glm::dvec3 knee_hinge(const Motion& m, int f, const std::vector<int>& chain, con
 
 }  // namespace
 
-std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>& continues,
-                                   const std::vector<Leg>& legs) {
-  std::vector<FootTrack> out;
+FootTrack::FootTrack(const Motion& source, const CaptureFacts& facts, const Leg& leg, int index)
+    : source_(&source),
+      flags_(facts.foot_flags.data()),
+      contact_bit_(foot_contact_bit(index)),
+      low_bit_(foot_low_bit(index)),
+      chain_(chain_to(source.skeleton, leg.ankle)),
+      hinge_(facts.knee_hinges[static_cast<std::size_t>(index)]) {}
+
+void FootTrack::world(int f, glm::dvec3& pos, glm::dquat& rot) const {
   std::vector<glm::dquat> wr;
   std::vector<glm::dvec3> wp;
-  for (const Leg& leg : legs) {
-    const std::vector<int> chain = chain_to(source.skeleton, leg.ankle);
-    FootTrack track;
-    track.pos.resize(static_cast<std::size_t>(source.frame_count));
-    track.rot.resize(static_cast<std::size_t>(source.frame_count));
-    glm::dvec3 hinge(0.0);
-    const std::size_t n = chain.size();
-    for (int f = 0; f < source.frame_count; ++f) {
-      chain_world(source, f, chain, wr, wp);
-      track.pos[static_cast<std::size_t>(f)] = wp.back();
-      track.rot[static_cast<std::size_t>(f)] = wr.back();
-      // The knee plane's normal in the thigh's frame, where the knee is clearly bent (17 degrees
-      // or more): a hinge, nearly the same axis in every such frame.
-      const glm::dvec3 normal = glm::cross(wp[n - 3] - wp[n - 2], wp[n - 1] - wp[n - 2]);
-      const double l = glm::length(wp[n - 3] - wp[n - 2]) * glm::length(wp[n - 1] - wp[n - 2]);
-      if (l > 0.0 && glm::length(normal) / l >= 0.3)
-        hinge += glm::conjugate(wr[n - 3]) * (normal / glm::length(normal));
-    }
-    if (glm::length(hinge) > 0.0) track.hinge = glm::normalize(hinge);
-    const std::vector<glm::dvec3>& p = track.pos;
-    std::vector<char> contact(static_cast<std::size_t>(source.frame_count), 0);
-    std::vector<char> low(contact.size(), 0);
-    for (int first = 0; first < source.frame_count;) {
-      int last = first;  // the capture run [first, last]
-      while (last + 1 < source.frame_count && continues[static_cast<std::size_t>(last)]) ++last;
-      double lowest = std::numeric_limits<double>::infinity();
-      for (int f = first; f <= last; ++f) lowest = std::min(lowest, p[static_cast<std::size_t>(f)].y);
-      for (int f = first; f <= last; ++f) {
-        const int g = f > first ? f - 1 : std::min(f + 1, last);
-        const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * source.fps;
-        low[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg.length;
-        contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg.length && low[static_cast<std::size_t>(f)];
-      }
-      first = last + 1;
-    }
-    drop_short_runs(contact, 0);  // fill short gaps first: a planted foot's noise
-    drop_short_runs(contact, 1);
-    track.contact = std::move(contact);
-    track.low = std::move(low);
-    out.push_back(std::move(track));
-  }
+  chain_world(*source_, f, chain_, wr, wp);
+  pos = wp.back();
+  rot = wr.back();
+}
+
+std::vector<FootTrack> foot_tracks(const Motion& source, const CaptureFacts& facts, const std::vector<Leg>& legs) {
+  if (!facts.known || facts.knee_hinges.size() != legs.size() ||
+      facts.foot_flags.size() != (legs.empty() ? 0u : static_cast<std::size_t>(source.frame_count)))
+    throw Error("assemble: the capture facts do not describe this source's legs");
+  std::vector<FootTrack> out;
+  for (std::size_t l = 0; l < legs.size(); ++l) out.emplace_back(source, facts, legs[l], static_cast<int>(l));
   return out;
 }
 
@@ -164,11 +100,20 @@ namespace {
 
 // The source ankle at a fractional source time (the next frame when the capture continues).
 void track_at(const FootTrack& t, double time, glm::dvec3& pos, glm::dquat& rot) {
-  const std::size_t f = static_cast<std::size_t>(std::floor(time));
+  const int f = static_cast<int>(std::floor(time));
   const double a = time - static_cast<double>(f);
-  const std::size_t g = a > 0.0 && f + 1 < t.pos.size() ? f + 1 : f;
-  pos = (1.0 - a) * t.pos[f] + a * t.pos[g];
-  rot = g == f ? t.rot[f] : slerp_shortest(t.rot[f], t.rot[g], a);
+  const int g = a > 0.0 && f + 1 < t.frame_count() ? f + 1 : f;
+  glm::dvec3 pf, pg;
+  glm::dquat rf, rg;
+  t.world(f, pf, rf);
+  if (g == f) {
+    pos = (1.0 - a) * pf + a * pf;
+    rot = rf;
+    return;
+  }
+  t.world(g, pg, rg);
+  pos = (1.0 - a) * pf + a * pg;
+  rot = slerp_shortest(rf, rg, a);
 }
 
 }  // namespace
@@ -199,7 +144,7 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
     for (int i = 0; i < out.frame_count; ++i) {
       const SourceClock& c = clock[static_cast<std::size_t>(i)];
       chain_world(out, i, chain, wr, wp);
-      const glm::dvec3 bend = knee_hinge(out, i, chain, track.hinge);
+      const glm::dvec3 bend = knee_hinge(out, i, chain, track.hinge());
       const glm::dvec3 hip = wp[wp.size() - 3], foot = wp.back();
       if (i == 0) foot_before = foot;
       const glm::dquat foot_rot = wr.back();
@@ -207,9 +152,10 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
       glm::dquat src_rot;
       track_at(track, c.time, src, src_rot);
       const bool same_run = i > 0 && c.run == clock[static_cast<std::size_t>(i) - 1].run;
-      const std::size_t sf = static_cast<std::size_t>(std::floor(c.time));
-      const bool contact = track.contact[sf] != 0;
-      const bool low = track.low[sf] != 0;
+      if (i > 0 && !same_run) track.release_source_pages();
+      const int sf = static_cast<int>(std::floor(c.time));
+      const bool contact = track.contact(sf);
+      const bool low = track.low(sf);
       if (locked && !same_run && i > 0) held = !contact;
       if (held && (contact || !low)) held = false;
       if (locked && same_run && !held) {

@@ -12,31 +12,45 @@
 // Legs are found by name (engine/motion/body_parts.h); without exactly two legs nothing is locked.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "engine/assemble/timeline.h"
 #include "engine/motion/body_parts.h"
+#include "engine/motion/capture_facts.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
 
-// One leg's ankle in the source capture, per source frame.
-struct FootTrack {
-  std::vector<char> contact;    // on the ground (see foot_tracks)
-  std::vector<char> low;        // near the ground: the height half of the contact test alone
-  std::vector<glm::dvec3> pos;  // world position
-  std::vector<glm::dquat> rot;  // world orientation
-  // The knee's hinge axis in the thigh's frame, learnt from the frames where the capture bends the
-  // knee clearly; 0 when it never does (the IK then bends in the pose's own plane).
-  glm::dvec3 hinge{0.0};
+// One leg's ankle in the source capture: whether it is on the ground at a source frame (from the
+// reference's capture facts, engine/motion/capture_facts.h), and its world pose there, computed
+// when asked (forward kinematics of the leg's chain), so the assembly reads only the source frames
+// it plays.
+class FootTrack {
+ public:
+  FootTrack(const Motion& source, const CaptureFacts& facts, const Leg& leg, int index);
+
+  bool contact(int f) const { return (flags_[static_cast<std::size_t>(f)] & contact_bit_) != 0; }
+  bool low(int f) const { return (flags_[static_cast<std::size_t>(f)] & low_bit_) != 0; }
+  // World position and orientation of the ankle at frame f.
+  void world(int f, glm::dvec3& pos, glm::dquat& rot) const;
+  int frame_count() const { return source_->frame_count; }
+  // The knee's hinge axis in the thigh's frame (CaptureFacts::knee_hinges), 0 when unknown.
+  const glm::dvec3& hinge() const { return hinge_; }
+  // Gives back the source's pages read so far (engine/motion/motion.h motion_release_pages).
+  void release_source_pages() const { motion_release_pages(*source_); }
+
+ private:
+  const Motion* source_;
+  const std::uint8_t* flags_;
+  std::uint8_t contact_bit_, low_bit_;
+  std::vector<int> chain_;
+  glm::dvec3 hinge_;
 };
 
-// Per leg, the source's ankle track. A foot is in contact when its world speed is below 0.15 leg
-// lengths per second (13 cm/s for a 0.9 m leg: a planted foot's capture noise stays far below, a
-// step is ten times faster) and it is within 0.1 leg lengths of the lowest point it reaches in
-// its capture run. Runs and gaps shorter than 3 frames are smoothed away.
-std::vector<FootTrack> foot_tracks(const Motion& source, const std::vector<char>& continues,
-                                   const std::vector<Leg>& legs);
+// Per leg, the source's ankle track (contact as CaptureFacts defines it). `facts` (known, with
+// flags for these legs) and `source` must outlive the tracks.
+std::vector<FootTrack> foot_tracks(const Motion& source, const CaptureFacts& facts, const std::vector<Leg>& legs);
 
 // Anchors the output's feet where the source (read at `clock`) is in contact. A released foot
 // steps, over step_s seconds, from where it was to where the output's leg puts it: it rises first

@@ -69,6 +69,11 @@ void smooth_rates(std::vector<SourceClock>& clock, const std::vector<int>& piece
 }  // namespace
 
 std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues) {
+  return source_timeline(pieces, CaptureRuns(continues));
+}
+
+std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs) {
+  const int frames = runs.frame_count();
   std::vector<SourceClock> out;
   int run = -1;
   int previous_frame = -2;  // last path frame of the previous piece
@@ -78,7 +83,7 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
     const std::vector<int>& p = piece.path;
     if (p.empty() || piece.length < 1) throw Error("source_timeline: empty path or length");
     for (int f : p)
-      if (f < 0 || f >= static_cast<int>(continues.size())) throw Error("source_timeline: path frame out of range");
+      if (f < 0 || f >= frames) throw Error("source_timeline: path frame out of range");
     const int n = static_cast<int>(p.size());
     const double rate = piece.length > 1 ? static_cast<double>(n - 1) / (piece.length - 1) : 0.0;
     // run_first[k]: index in p of the first frame of the run holding p[k].
@@ -86,8 +91,7 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
     std::vector<int> run_id(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
       const int before = k == 0 ? previous_frame : p[static_cast<std::size_t>(k - 1)];
-      const bool natural = before >= 0 && p[static_cast<std::size_t>(k)] == before + 1 &&
-                           continues[static_cast<std::size_t>(before)] != 0;
+      const bool natural = before >= 0 && p[static_cast<std::size_t>(k)] == before + 1 && runs.continues(before);
       if (!natural) ++run;
       run_first[static_cast<std::size_t>(k)] = natural && k > 0 ? run_first[static_cast<std::size_t>(k - 1)] : k;
       run_id[static_cast<std::size_t>(k)] = run;
@@ -102,8 +106,7 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
       // successor, which exists unless that frame is a break.
       c.time = p[static_cast<std::size_t>(first)] + (x - first);
       const int base = static_cast<int>(std::floor(c.time));
-      if (base >= static_cast<int>(continues.size()) || (c.time > base && !continues[static_cast<std::size_t>(base)]))
-        c.time = base;
+      if (base >= frames || (c.time > base && !runs.continues(base))) c.time = base;
       c.rate = rate;
       c.run = run_id[static_cast<std::size_t>(a)];
       out.push_back(c);
@@ -112,35 +115,6 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
   }
   smooth_rates(out, piece_starts);
   return out;
-}
-
-CaptureRuns::CaptureRuns(const std::vector<char>& continues) : continues_(continues), first_(continues.size()) {
-  for (std::size_t f = 0; f < continues.size(); ++f)
-    first_[f] = f > 0 && continues[f - 1] ? first_[f - 1] : static_cast<int>(f);
-}
-
-bool CaptureRuns::readable(double t, int from) const {
-  if (t < 0.0) return false;
-  const int f = static_cast<int>(std::floor(t));
-  const int frames = static_cast<int>(continues_.size());
-  if (f >= frames || first_[static_cast<std::size_t>(f)] != first_[static_cast<std::size_t>(from)]) return false;
-  return t == f || (f + 1 < frames && continues_[static_cast<std::size_t>(f)]);
-}
-
-bool CaptureRuns::velocity_partner(double t, double rate, double& out_time, double& out_sign) const {
-  if (rate <= 0.0) return false;
-  const int f = static_cast<int>(std::floor(t));
-  if (readable(t - rate, f)) {
-    out_time = t - rate;
-    out_sign = 1.0;
-    return true;
-  }
-  if (readable(t + rate, f)) {
-    out_time = t + rate;
-    out_sign = -1.0;
-    return true;
-  }
-  return false;
 }
 
 }  // namespace gmg

@@ -11,6 +11,8 @@
 
 #include <vector>
 
+#include "engine/motion/capture_runs.h"
+
 namespace gmg {
 
 // One piece of the plan: graph frames (>= 1) and the output frames they fill (>= 1).
@@ -25,36 +27,9 @@ struct SourceClock {
   int run = 0;        // increases at every transition; equal runs are one continuous stretch
 };
 
-// The continuous capture runs of a source (`continues[f]`: frame f is naturally followed by f + 1),
-// for reading it at fractional times without crossing a break. Shared by the pose reader of
-// transitions.cpp and the channel reader of channels.cpp, so both read exactly alike.
-class CaptureRuns {
- public:
-  // Keeps a reference to `continues`, which must outlive it.
-  explicit CaptureRuns(const std::vector<char>& continues);
-
-  // Whether time t can be read (interpolated) inside the capture run of frame `from`.
-  bool readable(double t, int from) const;
-
-  // The time a velocity at t is differenced against, at `rate` source frames per output frame:
-  // t - rate inside its run (out_sign 1), else t + rate at the run's start (out_sign -1). False for
-  // a held frame (rate <= 0) or a run too short for either.
-  bool velocity_partner(double t, double rate, double& out_time, double& out_sign) const;
-
-  // The frame time f + a (0 <= a < 1) is interpolated towards: f + 1 when a > 0 and f continues
-  // into it, else f itself.
-  int next_frame(int f, double a) const {
-    return a > 0.0 && f + 1 < static_cast<int>(continues_.size()) && continues_[static_cast<std::size_t>(f)] ? f + 1
-                                                                                                             : f;
-  }
-
- private:
-  const std::vector<char>& continues_;
-  std::vector<int> first_;  // first_[f]: the first frame of the run holding f
-};
-
-// `continues[f]` says whether source frame f is naturally followed by f + 1 (not a break node).
-// One clock per output frame (the sum of the pieces' lengths).
+// One clock per output frame (the sum of the pieces' lengths), reading the source's capture runs.
+std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs);
+// The same with `continues[f]`: source frame f is naturally followed by f + 1 (not a break node).
 std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues);
 
 }  // namespace gmg

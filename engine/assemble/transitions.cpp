@@ -1,7 +1,6 @@
 #include "engine/assemble/transitions.h"
 
 #include <cmath>
-#include <limits>
 
 #include "engine/assemble/foot_lock.h"
 #include "engine/assemble/inertialize.h"
@@ -29,7 +28,7 @@ struct Velocity {
 // across a break.
 class SourceReader {
  public:
-  SourceReader(const Motion& m, const std::vector<char>& continues) : m_(m), runs_(continues) {}
+  SourceReader(const Motion& m, const CaptureRuns& runs) : m_(m), runs_(runs) {}
 
   // Whether time t can be read in the same capture run as frame `from`.
   bool readable(double t, int from) const { return runs_.readable(t, from); }
@@ -67,7 +66,7 @@ class SourceReader {
 
  private:
   const Motion& m_;
-  CaptureRuns runs_;
+  const CaptureRuns& runs_;
 };
 
 // The decaying offsets of every joint, and the root's horizontal anchor.
@@ -113,17 +112,6 @@ struct Offsets {
   }
 };
 
-// The largest horizontal root step of the capture (file units per frame), inside capture runs.
-double largest_root_step(const Motion& m, const std::vector<char>& continues) {
-  double largest = 0.0;
-  for (int f = 1; f < m.frame_count; ++f) {
-    if (!continues[static_cast<std::size_t>(f - 1)]) continue;
-    const glm::dvec3 d = m.translation(f, 0) - m.translation(f - 1, 0);
-    largest = std::max(largest, std::hypot(d.x, d.z));
-  }
-  return largest;
-}
-
 // Where the old source would have gone one frame after `p` (its last played frame, whose pose
 // and velocity were `previous`, `previous_vel`): on along its own capture when it can, else on at
 // its last velocity.
@@ -147,12 +135,20 @@ void old_source_next(const SourceReader& reader, const SourceClock& p, const Pos
 
 Motion assemble_inertialized(const Motion& source, const std::vector<char>& continues,
                              const std::vector<PathPiece>& pieces, const BlendParams& params) {
-  if (!(params.halflife_s > 0.0)) throw Error("assemble: transition_halflife must be > 0");
   if (static_cast<int>(continues.size()) != source.frame_count) throw Error("assemble: continues has the wrong size");
-  const std::vector<SourceClock> clock = source_timeline(pieces, continues);
+  const CaptureRuns runs(continues);
+  return assemble_inertialized(source, runs, capture_facts(source, runs), pieces, params);
+}
+
+Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
+                             const std::vector<PathPiece>& pieces, const BlendParams& params) {
+  if (!(params.halflife_s > 0.0)) throw Error("assemble: transition_halflife must be > 0");
+  if (runs.frame_count() != source.frame_count) throw Error("assemble: the capture runs do not cover the source");
+  if (!facts.known) throw Error("assemble: the source's capture facts are not known");
+  const std::vector<SourceClock> clock = source_timeline(pieces, runs);
   const int joints = source.joint_count();
   Motion out = motion_rest(source.skeleton, source.fps, static_cast<int>(clock.size()));
-  const SourceReader reader(source, continues);
+  const SourceReader reader(source, runs);
   const double y = spring_damping(params.halflife_s * source.fps);
   const bool anchor_root = params.root == RootMode::Anchor;
   const double anchor_factor = anchor_root ? std::exp(-std::log(2.0) / (params.root_halflife_s * source.fps)) : 1.0;
@@ -160,13 +156,9 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   // spends at most half of what the current source step leaves of it.
   const double anchor_factor_outside =
       anchor_root ? std::exp(-std::log(2.0) / (0.2 * params.root_halflife_s * source.fps)) : 1.0;
-  const double root_step_limit = largest_root_step(source, continues);
+  const double root_step_limit = facts.largest_root_step;
   // The capture's standing area: the horizontal extent of its root, widened by a tenth.
-  glm::dvec3 area_lo(std::numeric_limits<double>::infinity()), area_hi(-std::numeric_limits<double>::infinity());
-  for (int f = 0; f < source.frame_count; ++f) {
-    area_lo = glm::min(area_lo, source.translation(f, 0));
-    area_hi = glm::max(area_hi, source.translation(f, 0));
-  }
+  glm::dvec3 area_lo = facts.root_lo, area_hi = facts.root_hi;
   const glm::dvec3 margin = 0.1 * (area_hi - area_lo);
   area_lo -= margin;
   area_hi += margin;
@@ -176,6 +168,9 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   Velocity dst_vel, previous_vel, old_vel;
   for (std::size_t i = 0; i < clock.size(); ++i) {
     const SourceClock& c = clock[i];
+    // A new run reads another stretch of the source: the pages of the stretches read so far go back
+    // (a source read in place from a graph file keeps only what is being read resident).
+    if (i > 0 && c.run != clock[i - 1].run) motion_release_pages(source);
     reader.sample(c.time, dst);
     if (i > 0) {
       off.decay(y);
@@ -206,7 +201,7 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
   }
   if (params.foot_lock) {
     const std::vector<Leg> legs = find_legs(source.skeleton);
-    if (!legs.empty()) foot_lock(out, clock, legs, foot_tracks(source, continues, legs), params.foot_step_s);
+    if (!legs.empty()) foot_lock(out, clock, legs, foot_tracks(source, facts, legs), params.foot_step_s);
   }
   return out;
 }

@@ -17,12 +17,21 @@
 
 #include "engine/assemble/params.h"
 #include "engine/assemble/timeline.h"
+#include "engine/motion/capture_facts.h"
+#include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
 
-// `continues[f]`: source frame f is naturally followed by f + 1. Returns exactly the pieces'
-// total length in frames, in the source's skeleton and fps. params.halflife_s > 0.
+// `runs`: the source's capture runs; `facts`: its capture facts (engine/motion/capture_facts.h,
+// known), which a graph keeps, so that the source is read only at the frames the pieces play.
+// Returns exactly the pieces' total length in frames, in the source's skeleton and fps.
+// params.halflife_s > 0.
+Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
+                             const std::vector<PathPiece>& pieces, const BlendParams& params);
+
+// The same for a source described by `continues[f]` (source frame f is naturally followed by
+// f + 1), its capture facts computed over every frame first.
 Motion assemble_inertialized(const Motion& source, const std::vector<char>& continues,
                              const std::vector<PathPiece>& pieces, const BlendParams& params);
 

@@ -586,6 +586,22 @@ MappedFile::~MappedFile() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+void release_mapped_pages(const void* p, std::size_t size) {
+  if (!p || size == 0) return;
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t end = begin + size;
+  const std::uintptr_t page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  for (const MappingSlot& m : g_mappings) {
+    const std::uintptr_t mb = m.begin.load(std::memory_order_acquire);
+    if (mb == 0) continue;
+    const std::uintptr_t me = m.end.load(std::memory_order_acquire);
+    const std::uintptr_t from = (std::max(begin, mb) + page - 1) / page * page;
+    const std::uintptr_t to = std::min(end, me) / page * page;
+    // NOLINTNEXTLINE(performance-no-int-to-ptr): pages of a mapping this process made
+    if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED);
+  }
+}
+
 bool MappedFile::changed() const {
   if (slot_ >= 0 && g_mappings[slot_].faulted.load(std::memory_order_acquire) != 0) return true;
   if (fd_ < 0) return false;

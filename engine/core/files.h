@@ -77,6 +77,13 @@ class MappedFile {
   long long mtime_ns_ = 0;
 };
 
+// Drops this process's pages of [p, p + size) where they lie in a file a live MappedFile maps (the
+// page cache keeps them; a later read maps them again); other memory is left alone. For arrays read
+// in place from a mapping at scattered places: a kernel that maps a whole large folio of the page
+// cache on a read (up to 2 MB) makes each scattered read resident with its neighbours, so a reader
+// that is done with a stretch gives it back. The caller keeps the mapping alive (it reads it).
+void release_mapped_pages(const void* p, std::size_t size);
+
 // ---- Writing ------------------------------------------------------------------------------------
 
 // Renames a finished temporary file `temp` to `path` (on the same file system, so the file

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace gmg {
 
@@ -144,6 +145,12 @@ void motion_check_finite(const Motion& m, const std::string& what) {
                   "': value is not finite");
     }
   }
+}
+
+void motion_release_pages(const Motion& m) {
+  release_mapped_pages(m.rotations.data(), m.rotations.size() * sizeof(glm::dquat));
+  release_mapped_pages(m.translations.data(), m.translations.size() * sizeof(glm::dvec3));
+  release_mapped_pages(m.euler_hints.data(), m.euler_hints.size() * sizeof(glm::dvec3));
 }
 
 }  // namespace gmg

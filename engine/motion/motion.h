@@ -90,4 +90,10 @@ Eigen::MatrixXd motion_forward_kinematics(const Motion& m);
 // Throws gmg::Error naming `what` when any rotation or translation is not finite.
 void motion_check_finite(const Motion& m, const std::string& what);
 
+// Gives back the pages of m's samples where they are read in place from a mapped file (a graph's
+// motion, graph/graph_io.h): a reader of scattered frames (a planner's poses, an assembly's pieces)
+// calls it when done with a stretch, so that what stays resident is what it reads next, not every
+// stretch it ever read (engine/core/files.h release_mapped_pages). Nothing for owned samples.
+void motion_release_pages(const Motion& m);
+
 }  // namespace gmg

@@ -22,8 +22,10 @@
 #include "engine/core/parallel.h"
 #include "engine/core/strings.h"
 #include "engine/metrics/evaluate.h"
+#include "engine/motion/capture_facts.h"
 #include "engine/motion/cleanup.h"
 #include "engine/motion/motion_file.h"
+#include "graph/reference_facts.h"
 #include "search/segmentation.h"
 
 namespace gmg {
@@ -322,12 +324,6 @@ BlendParams assembly_params(const Config& config) {
 
 namespace {
 
-std::vector<char> graph_continues(const MotionGraph& g) {
-  std::vector<char> continues(static_cast<std::size_t>(g.frame_count()));
-  for (int f = 0; f < g.frame_count(); ++f) continues[static_cast<std::size_t>(f)] = !(g.node(f).kinds & kBreakNode);
-  return continues;
-}
-
 std::vector<PathPiece> plan_pieces(const Plan& plan) {
   std::vector<PathPiece> pieces;
   pieces.reserve(plan.segments.size());
@@ -338,11 +334,19 @@ std::vector<PathPiece> plan_pieces(const Plan& plan) {
 }  // namespace
 
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
-  if (params.mode == BlendMode::Inertialize)
-    return assemble_inertialized(g.motion, graph_continues(g), plan_pieces(plan), params);
+  if (params.mode == BlendMode::Inertialize) {
+    // The graph's capture facts, so that only the frames played are read; a graph made without
+    // them (by hand) has them computed from every frame.
+    const CaptureRuns runs = graph_runs(g);
+    return assemble_inertialized(g.motion, runs, g.capture.known ? g.capture : capture_facts(g.motion, runs),
+                                 plan_pieces(plan), params);
+  }
   std::vector<Motion> pieces;
   pieces.reserve(plan.segments.size());
-  for (const PlannedSegment& s : plan.segments) pieces.push_back(resample_path(g.motion, s.path, s.sub.length));
+  for (const PlannedSegment& s : plan.segments) {
+    pieces.push_back(resample_path(g.motion, s.path, s.sub.length));
+    motion_release_pages(g.motion);  // each piece reads another stretch of a graph served from its file
+  }
   return blend_concatenate(pieces, params);
 }
 
@@ -355,8 +359,8 @@ SmplxBody assemble_body(const MotionGraph& g, const Plan& plan, const BlendParam
   out.expression_dims = g.body.expression_dims;
   out.expressions =
       params.mode == BlendMode::Inertialize
-          ? assemble_channels_inertialized(g.body.expressions, g.body.expression_dims, graph_continues(g),
-                                           plan_pieces(plan), params.halflife_s * g.motion.fps)
+          ? assemble_channels_inertialized(g.body.expressions, g.body.expression_dims, graph_runs(g), plan_pieces(plan),
+                                           params.halflife_s * g.motion.fps)
           : assemble_channels_blended(g.body.expressions, g.body.expression_dims, plan_pieces(plan), params);
   return out;
 }

@@ -1,10 +1,12 @@
 // engine/core/files: the one reader and the atomic writer.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -195,6 +197,43 @@ TEST(Files, MappedFileReleaseKeepsTheBytes) {
   file.release(0, file.size());  // the pages go back to the page cache, the bytes stay readable
   EXPECT_EQ(std::string(file.data(), file.size()), bytes);
   EXPECT_FALSE(file.changed());
+}
+
+// Pages of [p, p + size) mapped in this process (/proc/self/pagemap's present bit).
+std::size_t present_pages(const char* p, std::size_t size) {
+  const long page = ::sysconf(_SC_PAGESIZE);
+  const int fd = ::open("/proc/self/pagemap", O_RDONLY);
+  if (fd < 0) return 0;
+  std::size_t present = 0;
+  for (std::size_t off = 0; off < size; off += static_cast<std::size_t>(page)) {
+    std::uint64_t entry = 0;
+    const auto at =
+        static_cast<off_t>((reinterpret_cast<std::uintptr_t>(p) + off) / static_cast<std::size_t>(page) * 8);
+    if (::pread(fd, &entry, sizeof entry, at) == static_cast<ssize_t>(sizeof entry) && (entry >> 63) != 0) ++present;
+  }
+  ::close(fd);
+  return present;
+}
+
+// release_mapped_pages gives back the pages of a live mapping that a range covers, and leaves
+// other memory (an ordinary vector) alone.
+TEST(Files, ReleaseMappedPagesDropsOnlyMappedPages) {
+  TempDir dir;
+  std::string bytes(1 << 20, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 13 % 241);
+  write_text(dir.file("g.gmg"), bytes);
+  const MappedFile file(dir.file("g.gmg"));
+  long sum = 0;
+  for (std::size_t i = 0; i < file.size(); i += 4096) sum += file.data()[i];
+  EXPECT_NE(sum, 0);
+  ASSERT_GT(present_pages(file.data(), file.size()), 0u) << "reading maps pages";
+  release_mapped_pages(file.data() + 1000, file.size() - 1000);  // from inside the first page on
+  EXPECT_LE(present_pages(file.data(), file.size()), 1u) << "only the first page, partly outside the range, stays";
+  EXPECT_EQ(std::string(file.data(), file.size()), bytes);
+  std::vector<char> own(1 << 16, 'x');
+  release_mapped_pages(own.data(), own.size());
+  EXPECT_EQ(std::string(own.begin(), own.end()), std::string(own.size(), 'x'));
+  release_mapped_pages(nullptr, 100);
 }
 
 TEST(Files, RenameIntoPlaceReplacesTheFile) {

@@ -1,22 +1,14 @@
 // libFuzzer harness: graph files (graph/graph_io.cpp). The file's checksum would stop almost every
 // mutation at the header, so the first byte chooses: even, the rest is a whole file; odd, the
-// rest is a payload that gets a valid header and checksum, so the field checks behind the
-// checksum are what is fuzzed.
+// rest is a payload that gets a valid header (this gmg's format version) and checksum, so the
+// field checks behind the checksum are what is fuzzed.
 #include <cstring>
 
+#include "engine/core/checksum.h"
 #include "graph/graph_io.h"
 #include "tests/fuzz/fuzz_common.h"
 
 namespace {
-
-std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const char c : s) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
 
 template <typename T>
 void append(std::string& out, T v) {
@@ -32,10 +24,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string bytes = gmg::fuzz::bytes_of(data + 1, size - 1);
   if (data[0] % 2 == 1) {
     std::string file("GMGRAPH\0", 8);
-    append<std::uint32_t>(file, 1);
+    append<std::uint32_t>(file, gmg::kGraphFormatVersion);
     append<std::uint64_t>(file, bytes.size());
     file += bytes;
-    append<std::uint64_t>(file, fnv1a(bytes));
+    append<std::uint64_t>(file, gmg::checksum_of(bytes.data(), bytes.size()));
     bytes = std::move(file);
   }
   gmg::fuzz::expect_success_or_error("fuzz.gmg", [&] { (void)gmg::graph_parse(bytes, "fuzz.gmg"); });

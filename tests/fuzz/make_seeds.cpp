@@ -21,6 +21,7 @@
 #include "engine/synth/synth.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
+#include "graph/reference_facts.h"
 #include "tests/fuzz/fuzz_common.h"
 
 namespace fs = std::filesystem;
@@ -159,6 +160,7 @@ gmg::MotionGraph tiny_graph() {
   b.node(5).kinds = gmg::kBreakNode;
   b.node(9).kinds = gmg::kBreakNode;
   g.graph = b.finish();
+  gmg::add_reference_facts(g);  // so the seed reaches the reference facts' checks
   return g;
 }
 

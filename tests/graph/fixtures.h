@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <boost/range/iterator_range.hpp>
@@ -62,6 +63,50 @@ inline MotionGraph two_clip_graph() {
   ClipEvents a{"a.bvh", line_motion(wave(100, 0.0)), {10, 40, 70}, {{20, "big"}, {60, "this"}}};
   ClipEvents b{"b.bvh", line_motion(wave(80, 1.0)), {5, 30}, {{50, "big"}}};
   return graph_build({a, b}, GraphParams{});
+}
+
+// A body with legs: pelvis (the root, moving), a spine and a head, and two legs of 0.5 + 0.4 (hip,
+// knee, ankle: find_legs finds them). n frames: the spine sways, the knees bend and straighten, the
+// pelvis steps forward every 40 frames; speech features (loudness, onsets) under every frame, so
+// the graph has activity and beat end costs.
+inline ClipEvents legged_clip(const std::string& name, int n, double phase) {
+  Skeleton sk;
+  auto joint = [&](const char* joint_name, int parent, glm::dvec3 offset) {
+    Joint j;
+    j.name = joint_name;
+    j.parent = parent;
+    j.offset = offset;
+    j.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
+    if (parent < 0) j.channels.insert(j.channels.begin(), {Channel::Xposition, Channel::Yposition, Channel::Zposition});
+    sk.joints.push_back(j);
+  };
+  joint("pelvis", -1, glm::dvec3(0.0));
+  joint("spine", 0, glm::dvec3(0, 0.3, 0));
+  joint("head", 1, glm::dvec3(0, 0.4, 0));
+  joint("left_hip", 0, glm::dvec3(0.1, 0, 0));
+  joint("left_knee", 3, glm::dvec3(0, -0.5, 0));
+  joint("left_ankle", 4, glm::dvec3(0, -0.4, 0));
+  joint("right_hip", 0, glm::dvec3(-0.1, 0, 0));
+  joint("right_knee", 6, glm::dvec3(0, -0.5, 0));
+  joint("right_ankle", 7, glm::dvec3(0, -0.4, 0));
+  Motion m = motion_rest(sk, 30.0, n);
+  for (int f = 0; f < n; ++f) {
+    const double t = f * 0.15 + phase;
+    m.translations[m.index(f, 0)] = glm::dvec3(0.05 * static_cast<double>(f / 40), 1.0, 0.0);
+    m.rotations[m.index(f, 1)] = glm::angleAxis(0.4 * std::sin(t), glm::dvec3(0, 0, 1));
+    m.rotations[m.index(f, 4)] = glm::angleAxis(0.3 + 0.3 * std::sin(0.5 * t), glm::dvec3(1, 0, 0));
+  }
+  ClipEvents c{name, m, {10, 35, 60}, {{25, "big"}}};
+  c.speech_dims = 2;
+  for (int f = 0; f < n; ++f) {
+    c.speech.push_back(static_cast<float>(-1.0 + std::sin(0.1 * f + phase)));
+    c.speech.push_back(static_cast<float>(0.5 * std::cos(0.3 * f)));
+  }
+  return c;
+}
+
+inline MotionGraph legged_graph() {
+  return graph_build({legged_clip("a.bvh", 120, 0.0), legged_clip("b.bvh", 90, 1.0)}, GraphParams{});
 }
 
 // The storage of g with one more edge, out of `from` after its own (storage is immutable once

@@ -12,10 +12,12 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/core/checksum.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "graph/build.h"
 #include "graph/graph_io.h"
+#include "graph/reference_facts.h"
 #include "graph/stats.h"
 #include "tests/graph/fixtures.h"
 #include "tests/test_support.h"
@@ -138,15 +140,15 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   EXPECT_EQ(a.onset_nodes, b.onset_nodes);
 }
 
-// Format 5 holds the SMPL-X body (shape and per-frame face) as its last section, empty for a graph
+// Format 6 holds the SMPL-X body (shape and per-frame face) as its last section, empty for a graph
 // of BVH references: both load exactly, the payloads agree up to the body, and the face starts on a
 // page boundary like the other large arrays.
-TEST(GraphIo, TheBodyIsTheLastSectionOfVersion5) {
+TEST(GraphIo, TheBodyIsTheLastSectionOfVersion6) {
   MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 5);
+  EXPECT_EQ(plain[8], 6);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -157,7 +159,7 @@ TEST(GraphIo, TheBodyIsTheLastSectionOfVersion5) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 5);
+  EXPECT_EQ(bytes[8], 6);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -220,12 +222,12 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   std::string version = bytes;
   version[8] = 9;
   expect_error(version, "version 9");
-  // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body) are refused
-  // before anything else is read, with the advice to rebuild them.
-  for (char old : {3, 4}) {
+  // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
+  // facts) are refused before anything else is read, with the advice to rebuild them.
+  for (char old : {3, 4, 5}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads version 5: rebuild it with 'gmg build'");
+                              ", this gmg reads version 6: rebuild it with 'gmg build'");
   }
 }
 
@@ -290,6 +292,110 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
   });
   expect_refused("build parameters are out of range", [](MotionGraph& g) { g.params.l_pn = 0; });
   EXPECT_EQ(error_after([](MotionGraph&) {}), "accepted");  // the control
+}
+
+// Format 6 keeps the reference facts (graph/reference_facts.h): they load exactly, the per-frame
+// arrays in place from the file, and the index and transition scale the load takes from the nodes
+// and edges equal those of the build, bit for bit.
+TEST(GraphIo, TheReferenceFactsRoundTrip) {
+  const MotionGraph g = legged_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("g.gmg"), g);
+  const MotionGraph h = graph_load(dir.file("g.gmg"));
+  ASSERT_TRUE(h.capture.known);
+  EXPECT_EQ(h.capture.largest_root_step, g.capture.largest_root_step);
+  EXPECT_EQ(h.capture.root_lo, g.capture.root_lo);
+  EXPECT_EQ(h.capture.root_hi, g.capture.root_hi);
+  EXPECT_EQ(h.capture.knee_hinges, g.capture.knee_hinges);
+  EXPECT_EQ(h.capture.foot_flags, g.capture.foot_flags);
+  EXPECT_EQ(h.beat_cost, g.beat_cost);
+  EXPECT_TRUE(h.capture.foot_flags.is_view());
+  EXPECT_TRUE(h.beat_cost.is_view());
+  EXPECT_EQ(h.key_poses, g.key_poses);
+  EXPECT_TRUE(h.indexed);
+  EXPECT_EQ(h.keys, g.keys);
+  EXPECT_EQ(h.breaks, g.breaks);
+  EXPECT_EQ(h.transition_weight, g.transition_weight);
+  EXPECT_GT(h.transition_weight, 0.0);
+
+  // A graph made by hand without them saves and loads without them (they are computed where used).
+  MotionGraph bare = two_clip_graph();
+  bare.capture = CaptureFacts();
+  bare.beat_cost = Samples<float>();
+  graph_save(dir.file("bare.gmg"), bare);
+  const MotionGraph b = graph_load(dir.file("bare.gmg"));
+  EXPECT_FALSE(b.capture.known);
+  EXPECT_TRUE(b.capture.foot_flags.empty());
+  EXPECT_TRUE(b.beat_cost.empty());
+  EXPECT_EQ(b.keys, bare.keys);
+}
+
+// Each value of the reference facts is checked behind the checksum, as the assembly and the
+// planner use it; the error names the file and the byte.
+TEST(GraphIo, LoadChecksTheReferenceFacts) {
+  gmg::testing::TempDir dir;
+  const std::string path = dir.file("hand.gmg");
+  auto expect_refused = [&](const std::string& fragment, const std::function<void(MotionGraph&)>& damage) {
+    MotionGraph g = legged_graph();
+    damage(g);
+    graph_save(path, g);
+    try {
+      graph_load(path);
+      ADD_FAILURE() << "accepted: " << fragment;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("hand.gmg: byte "), std::string::npos) << what;
+      EXPECT_NE(what.find("damaged graph file: " + fragment), std::string::npos) << what;
+    }
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  expect_refused("the largest root step is negative or not finite",
+                 [](MotionGraph& g) { g.capture.largest_root_step = -0.5; });
+  expect_refused("the largest root step is negative or not finite",
+                 [&](MotionGraph& g) { g.capture.largest_root_step = nan; });
+  expect_refused("the root's extent is not finite or its low end lies above its high end",
+                 [](MotionGraph& g) { std::swap(g.capture.root_lo, g.capture.root_hi); });
+  expect_refused("the root's extent is not finite or its low end lies above its high end",
+                 [](MotionGraph& g) { g.capture.root_hi.z = std::numeric_limits<double>::infinity(); });
+  expect_refused("the reference facts describe 1 legs, its skeleton has 2",
+                 [](MotionGraph& g) { g.capture.knee_hinges.pop_back(); });
+  expect_refused("the reference facts are unknown but describe legs", [](MotionGraph& g) { g.capture.known = false; });
+  expect_refused("a knee hinge is not a unit axis",
+                 [](MotionGraph& g) { g.capture.knee_hinges[0] = glm::dvec3(0.0, 2.0, 0.0); });
+  expect_refused("a knee hinge is not a unit axis", [&](MotionGraph& g) { g.capture.knee_hinges[1].y = nan; });
+  expect_refused("foot contacts disagree with the frame count",
+                 [](MotionGraph& g) { g.capture.foot_flags.vec().pop_back(); });
+  expect_refused("a foot contact has bits of no leg", [](MotionGraph& g) { g.capture.foot_flags[7] |= 0x10; });
+  expect_refused("beat end costs disagree with the frame count", [](MotionGraph& g) { g.beat_cost.vec().pop_back(); });
+  expect_refused("beat end costs disagree with the frame count",
+                 [](MotionGraph& g) { g.beat_cost = Samples<float>(); });
+  expect_refused("a beat end cost is not a number from 0 to 1", [](MotionGraph& g) { g.beat_cost[3] = 1.5f; });
+  expect_refused("a beat end cost is not a number from 0 to 1",
+                 [](MotionGraph& g) { g.beat_cost[3] = std::numeric_limits<float>::quiet_NaN(); });
+
+  // The flag that says whether the facts are known is a byte, 0 or 1: the byte before the largest
+  // root step and the root's extent, set to 2 under a valid checksum.
+  const MotionGraph g = legged_graph();
+  graph_save(path, g);
+  std::string bytes = read_file_bytes(path);
+  std::string facts(reinterpret_cast<const char*>(&g.capture.largest_root_step), sizeof(double));
+  facts.append(reinterpret_cast<const char*>(&g.capture.root_lo), sizeof(glm::dvec3));
+  facts.append(reinterpret_cast<const char*>(&g.capture.root_hi), sizeof(glm::dvec3));
+  const std::size_t at = bytes.find(facts);
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(bytes[at - 1], 1);
+  bytes[at - 1] = 2;
+  const std::size_t header = 8 + 4 + 8;
+  const std::uint64_t sum = checksum_of(bytes.data() + header, bytes.size() - header - 8);
+  bytes.replace(bytes.size() - 8, 8, reinterpret_cast<const char*>(&sum), 8);
+  gmg::testing::write_text(path, bytes);
+  try {
+    graph_load(path);
+    ADD_FAILURE() << "a known flag of 2 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the reference facts are neither known nor unknown"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

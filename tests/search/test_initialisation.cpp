@@ -1,4 +1,5 @@
 // Feature-based initialisation: key features, d_feat ranking, occurrences, random fallback.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -66,5 +67,57 @@ TEST(Initialisation, RandomNodesAreSeededAndInRange) {
   EXPECT_NE(na, initialisation_start_nodes(g, index, 0, 0, p, c));
 }
 
+// At or below the cap every key node is a candidate; above it a sample of at most cap of them in
+// blocks of consecutive key nodes, every stride-th block from an offset the seed and the
+// subsequence decide.
+TEST(Initialisation, AboveTheCapEachSubsequenceRanksAnEvenSample) {
+  for (int cap : {0, 1000, 5000}) {
+    const std::vector<std::size_t> all = start_candidate_sample(1000, cap, 7, 3);
+    ASSERT_EQ(all.size(), 1000u);
+    for (std::size_t m = 0; m < all.size(); ++m) EXPECT_EQ(all[m], m);
+  }
+  // 1000 keys, cap 200: 16 blocks of 64 (the last of 40), 3 wanted, every 6th block from an offset
+  // in [0, 6): blocks o, o + 6 and (when o < 4) o + 12.
+  std::vector<std::size_t> offsets;
+  for (std::size_t k = 0; k < 40; ++k) {
+    const std::vector<std::size_t> s = start_candidate_sample(1000, 200, 7, k);
+    ASSERT_FALSE(s.empty());
+    EXPECT_LE(s.size(), 200u);
+    const std::size_t o = s.front() / 64;
+    EXPECT_LT(o, 6u);
+    EXPECT_EQ(s.front(), 64 * o);
+    std::vector<std::size_t> expected;
+    for (std::size_t b = o; b < 16; b += 6)
+      for (std::size_t i = 64 * b; i < std::min<std::size_t>(1000, 64 * b + 64); ++i) expected.push_back(i);
+    EXPECT_EQ(s, expected);
+    EXPECT_EQ(start_candidate_sample(1000, 200, 7, k), s);
+    offsets.push_back(o);
+  }
+  std::sort(offsets.begin(), offsets.end());
+  EXPECT_EQ(std::unique(offsets.begin(), offsets.end()) - offsets.begin(), 6) << "subsequences see different samples";
+  // A cap below a block: blocks of the cap's size.
+  const std::vector<std::size_t> small = start_candidate_sample(100, 10, 7, 0);
+  EXPECT_EQ(small.size(), 10u);
+  EXPECT_EQ(small.back() - small.front(), 9u);
+}
+
+// A ranking made once serves every attempt: its rounds are those initialisation_start_nodes gives.
+TEST(Initialisation, ARankingServesEveryRound) {
+  const MotionGraph g = chain_graph(200, {0, 10, 20, 40, 70, 75, 90, 120, 150, 151, 170}, {}, {});
+  SearchParams p;
+  p.l_feat = 2;
+  p.w_full = {1, 1};
+  p.l_npaths = 3;
+  const std::vector<Subsequence> subs = {{0, 20, Termination::Rhythm, ""}, {20, 20, Termination::Rhythm, ""}};
+  const StartNodeIndex index = initialisation_prepare(g, subs, p);
+  std::vector<std::size_t> all(index.keys.size());
+  for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
+  StartRanking ranking(index, 0, all, nullptr, p);
+  for (int round = 0; round < 6; ++round) {  // the last rounds run out of key nodes: random frames
+    std::mt19937_64 a(5), b(5);
+    EXPECT_EQ(ranking.start_nodes(g, index, round, p, a), initialisation_start_nodes(g, index, 0, round, p, b))
+        << "round " << round;
+  }
+}
 }  // namespace
 }  // namespace gmg

@@ -6,6 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "graph/graph_builder.h"
+#include "graph/key_poses.h"
 #include "search/junction.h"
 #include "search/planner.h"
 
@@ -92,5 +93,29 @@ TEST(Junction, CostIsThePoseDistanceOverTheMeanTransitionWeight) {
   EXPECT_NEAR(j.largest_joint_gap(10, 20), chord, 1e-9);
 }
 
+// With the key poses in the graph, the key nodes' costs are read in place, for all of them or for
+// some of them, and each equals what the copied batch of `costs` gives, bit for bit.
+TEST(Junction, KeyCostsReadInPlaceEqualTheBatch) {
+  std::vector<double> angle(120);
+  for (int f = 0; f < 120; ++f) angle[static_cast<std::size_t>(f)] = 0.03 * f + 0.4 * std::sin(0.2 * f);
+  MotionGraph g = posed_graph(angle, {5, 17, 30, 44, 58, 61, 80, 95, 101}, {119}, {{5, 80, 2.0}});
+  g.key_poses = key_junction_poses(g);
+  JunctionCost j(g);
+  ASSERT_TRUE(j.has_key_poses());
+  const std::vector<int> keys = g.key_frames();
+  for (int c : {17, 33}) {  // a key node and a frame that is not one
+    std::vector<double> batch, in_place, strided;
+    JunctionCost fresh(g);
+    fresh.costs(c, keys, batch);
+    std::vector<std::size_t> all(keys.size());
+    for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
+    j.key_costs(c, all, in_place);
+    EXPECT_EQ(in_place, batch);
+    const std::vector<std::size_t> some = {1, 2, 3, 6, 8, 9};  // runs 1-3, 6, 8-9
+    j.key_costs(c, some, strided);
+    ASSERT_EQ(strided.size(), some.size());
+    for (std::size_t m = 0; m < some.size(); ++m) EXPECT_EQ(strided[m], batch[some[m]]) << "key " << some[m];
+  }
+}
 }  // namespace
 }  // namespace gmg

@@ -171,5 +171,29 @@ TEST(PlannerSpeech, AnAttractiveStretchIsNotReplayedBeyondTheBound) {
   EXPECT_GT(most_plays(no_reuse), 10) << "the test needs a stretch the planner would otherwise replay";
 }
 
+// A graph with more key nodes than start_candidates ranks a sample of them for each subsequence:
+// the plan is still the same for the same seed. At a cap of exactly the key count nothing is
+// sampled and no draw is made, so the plan is that of no cap at all.
+TEST(Planner, AboveTheCapPlansWithASampleDeterministically) {
+  std::vector<int> onsets;
+  for (int f = 7; f < 1200; f += 9 + (f / 7) % 5) onsets.push_back(f);
+  const MotionGraph g = chain_graph(1200, onsets, {}, {{50, 600, 1.0}, {300, 900, 2.0}, {700, 100, 1.5}});
+  const std::size_t keys = onsets.size() + 1;  // and the clip's end
+  std::vector<Subsequence> subs;
+  for (int t = 0, k = 0; t < 300; t += 12 + k % 9, ++k) subs.push_back({t, 12 + k % 9, Termination::Rhythm, ""});
+  auto plan = [&](int cap, std::uint64_t seed) {
+    SearchParams p;
+    p.start_candidates = cap;
+    std::mt19937_64 rng(seed);
+    std::vector<std::vector<int>> paths;
+    for (const PlannedSegment& s : plan_reenactment(g, subs, p, rng).segments) paths.push_back(s.path);
+    return paths;
+  };
+  const auto sampled = plan(20, 1);
+  EXPECT_EQ(plan(20, 1), sampled);
+  EXPECT_EQ(sampled.size(), subs.size());
+  EXPECT_EQ(plan(static_cast<int>(keys), 1), plan(0, 1));
+  EXPECT_EQ(plan(static_cast<int>(keys), 2), plan(0, 2));
+}
 }  // namespace
 }  // namespace gmg

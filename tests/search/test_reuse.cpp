@@ -58,5 +58,28 @@ TEST(Reuse, AFrameAtItsCapWithinTheWindowCostsTheCap) {
   EXPECT_FALSE(none.capped(4, 3));
 }
 
+// Play counts are kept per block of frames made on the first play in it: frames on either side of
+// a block's edge, and far into a long reference, count alike.
+TEST(Reuse, FramesOfEveryBlockCountAlike) {
+  ReuseTracker r(3000000, 30.0, 2, 50);
+  for (int f : {4095, 4096, 2999999}) {
+    EXPECT_EQ(r.plays(f, 0), 0.0);
+    EXPECT_FALSE(r.capped(f, 0));
+  }
+  r.play({4095, 4096}, 0);
+  r.play({2999999}, 0);
+  r.play({4096, 2999999}, 10);
+  EXPECT_DOUBLE_EQ(r.plays(4095, 0), 1.0);
+  EXPECT_NEAR(r.plays(4096, 10), 1.0 + std::exp(-std::log(2.0) / 3.0), 1e-12);
+  EXPECT_FALSE(r.capped(4095, 10));
+  EXPECT_TRUE(r.capped(4096, 10));
+  EXPECT_TRUE(r.capped(2999999, 49));
+  EXPECT_FALSE(r.capped(2999999, 50));
+  EXPECT_EQ(r.plays(4097, 10), 0.0);
+  std::vector<double> w;
+  r.window_costs(3, 10, {4094, 2999998}, w);  // 4094-4096; 2999998-2999999 (clamped)
+  EXPECT_NEAR(w[0], r.frame_cost(4096, 10), 1e-12);
+  EXPECT_NEAR(w[1], r.frame_cost(2999999, 10), 1e-12);
+}
 }  // namespace
 }  // namespace gmg

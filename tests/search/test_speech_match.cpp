@@ -93,5 +93,21 @@ TEST(SpeechMatch, EndingOnAKinematicBeatCostsNothing) {
   EXPECT_NEAR(m.end_cost(7), 1.0 - std::exp(-0.5), 1e-6);
 }
 
+// A graph that keeps its beat end costs (MotionGraph::beat_cost) is read, not recomputed; one made
+// without them has them computed from its activity (graph/beats.h).
+TEST(SpeechMatch, EndCostsComeFromTheGraph) {
+  MotionGraph g = chain_graph(21, {}, {}, {});
+  g.speech_dims = 2;
+  g.speech.assign(std::size_t{2} * 21, 0.0f);
+  for (int f = 0; f < 21; ++f) g.activity.push_back(1.0f + 0.05f * static_cast<float>(std::abs(f - 10)));
+  const SpeechMatch computed(g, std::vector<float>(2, 0.0f), 1);
+  std::vector<float> kept(21);
+  for (int f = 0; f < 21; ++f) kept[static_cast<std::size_t>(f)] = 0.01f * static_cast<float>(f);
+  g.beat_cost = kept;
+  const SpeechMatch stored(g, std::vector<float>(2, 0.0f), 1);
+  EXPECT_NEAR(computed.end_cost(10), 0.0, 1e-12);
+  EXPECT_EQ(stored.end_cost(10), static_cast<double>(kept[10]));
+  EXPECT_EQ(stored.end_cost(3), static_cast<double>(kept[3]));
+}
 }  // namespace
 }  // namespace gmg

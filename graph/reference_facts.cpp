@@ -1,0 +1,48 @@
+#include "graph/reference_facts.h"
+
+#include "graph/beats.h"
+
+namespace gmg {
+
+double mean_transition_weight(const GraphStorage& graph) {
+  double sum = 0.0;
+  long count = 0;
+  for (auto [it, end] = boost::edges(graph); it != end; ++it)
+    if (!graph[*it].natural) {
+      sum += graph[*it].weight;
+      ++count;
+    }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+std::vector<int> graph_keys(const MotionGraph& g) { return g.indexed ? g.keys : g.key_frames(); }
+
+CaptureRuns graph_runs(const MotionGraph& g) {
+  if (g.indexed) return CaptureRuns(g.frame_count(), g.breaks);
+  std::vector<int> breaks;
+  for (int f = 0; f < g.frame_count(); ++f)
+    if (g.node(f).kinds & kBreakNode) breaks.push_back(f);
+  return CaptureRuns(g.frame_count(), std::move(breaks));
+}
+
+void index_graph(MotionGraph& g) {
+  g.keys.clear();
+  g.breaks.clear();
+  for (int f = 0; f < g.frame_count(); ++f) {
+    if (g.is_key(f)) g.keys.push_back(f);
+    if (g.node(f).kinds & kBreakNode) g.breaks.push_back(f);
+  }
+  g.transition_weight = mean_transition_weight(g.graph);
+  g.indexed = true;
+}
+
+void add_reference_facts(MotionGraph& g) {
+  index_graph(g);
+  const CaptureRuns runs = graph_runs(g);
+  g.capture = capture_facts(g.motion, runs);
+  g.beat_cost = g.activity.size() == static_cast<std::size_t>(g.frame_count())
+                    ? Samples<float>(beat_end_costs(g.activity, runs, g.motion.fps))
+                    : Samples<float>();
+}
+
+}  // namespace gmg
