@@ -51,7 +51,7 @@ void divide_by_median(std::vector<float>& values) {
 template <typename T>
 Samples<T> finish_samples(SpillFile& spill) {
   const SpillFile::Bytes b = spill.finish();
-  return Samples<T>::view(reinterpret_cast<const T*>(b.data), b.size / sizeof(T), b.owner, b.file.get());
+  return Samples<T>::view(reinterpret_cast<const T*>(b.data), b.size / sizeof(T), b.owner);
 }
 
 }  // namespace

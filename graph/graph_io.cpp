@@ -432,7 +432,7 @@ void read_key_poses(Reader& r, const Source& src, MotionGraph& g) {
     for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
   });
   if (!finite) r.fail("a key pose value is not finite");
-  g.key_poses = Samples<double>::view(poses, n, src.owner, src.file);
+  g.key_poses = Samples<double>::view(poses, n, src.owner);
 }
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -599,15 +599,16 @@ void read_motion(Reader& r, const Source& src, Motion& m) {
   const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
   if (rotations_n != expected) r.fail("motion size disagrees with frames x joints");
   std::size_t bad = expected;
-  // A unit rotation: finite, its squared norm within 1e-6 of 1. Each chunk is checked as a whole
-  // (no early exit, so the loop vectorises) and searched for its first bad value only when it has one.
-  auto unit = [](const glm::dquat& q) {
-    return std::isfinite(q.w + q.x + q.y + q.z) && std::abs(glm::dot(q, q) - 1.0) <= 1e-6;
-  };
+  // A unit rotation: its squared norm within 1e-6 of 1, which no rotation with an infinite or NaN
+  // part has (the comparison with NaN is false). Each chunk is checked as a whole (a count with no
+  // early exit and no call, so the loop vectorises) and searched for its first bad value only when
+  // it has one.
+  auto unit = [](const glm::dquat& q) { return std::abs(glm::dot(q, q) - 1.0) <= 1e-6; };
   r.in_place<glm::dquat>(expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
     if (bad != expected) return;
-    bool all = true;
-    for (std::size_t k = 0; k < n; ++k) all &= unit(q[k]);
+    std::size_t good = 0;
+    for (std::size_t k = 0; k < n; ++k) good += unit(q[k]) ? 1 : 0;
+    const bool all = good == n;
     for (std::size_t k = 0; k < n && !all; ++k)
       if (!unit(q[k])) {
         bad = first + k;
@@ -618,18 +619,25 @@ void read_motion(Reader& r, const Source& src, Motion& m) {
   if (translations_n != expected) r.fail("motion size disagrees with frames x joints");
   r.in_place<glm::dvec3>(expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
     if (first >= bad) return;
-    bool all = true;
-    for (std::size_t k = 0; k < n; ++k) all &= std::isfinite(t[k].x + t[k].y + t[k].z);
+    // s - s is 0 for a finite sum and NaN for an infinite or NaN one (std::isfinite, a call, keeps
+    // the loop scalar).
+    auto finite = [](const glm::dvec3& v) {
+      const double s = v.x + v.y + v.z;
+      return s - s == 0.0;
+    };
+    std::size_t good = 0;
+    for (std::size_t k = 0; k < n; ++k) good += finite(t[k]) ? 1 : 0;
+    const bool all = good == n;
     for (std::size_t k = 0; k < n && !all && first + k < bad; ++k)
-      if (!std::isfinite(t[k].x + t[k].y + t[k].z)) {
+      if (!finite(t[k])) {
         bad = first + k;
         break;
       }
   });
   if (bad != expected)
     r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
-  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner, src.file);
-  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner, src.file);
+  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner);
+  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner);
 }
 
 // Natural edges are the capture's own frame steps: to the next frame, with weight 0.

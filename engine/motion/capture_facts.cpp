@@ -34,6 +34,14 @@ void chain_world(const Motion& m, int f, const std::vector<int>& chain, std::vec
 
 namespace {
 
+// A pass over the motion gives back each stretch of this many frames behind it (a long reference
+// spilled to disk or served from its file stays resident only where it is read).
+constexpr int kReleaseStride = 1 << 16;
+
+void release_behind(const Motion& m, int f) {
+  if (f > 0 && f % kReleaseStride == 0) motion_release_frames(m, f - kReleaseStride, kReleaseStride);
+}
+
 // Fills gaps and removes runs of `value` shorter than kContactMinRun.
 void drop_short_runs(std::vector<char>& flags, char value) {
   for (std::size_t i = 0; i < flags.size();) {
@@ -50,6 +58,7 @@ void drop_short_runs(std::vector<char>& flags, char value) {
 double largest_root_step(const Motion& m, const CaptureRuns& runs) {
   double largest = 0.0;
   for (int f = 1; f < m.frame_count; ++f) {
+    release_behind(m, f);
     if (!runs.continues(f - 1)) continue;
     const glm::dvec3 d = m.translation(f, 0) - m.translation(f - 1, 0);
     largest = std::max(largest, std::hypot(d.x, d.z));
@@ -67,6 +76,7 @@ glm::dvec3 leg_facts(const Motion& m, const CaptureRuns& runs, const Leg& leg, i
   std::vector<glm::dvec3> p(static_cast<std::size_t>(m.frame_count));
   glm::dvec3 hinge(0.0);
   for (int f = 0; f < m.frame_count; ++f) {
+    release_behind(m, f);
     chain_world(m, f, chain, wr, wp);
     p[static_cast<std::size_t>(f)] = wp.back();
     // The knee plane's normal in the thigh's frame, where the knee is clearly bent (17 degrees or
@@ -106,9 +116,11 @@ CaptureFacts capture_facts(const Motion& m, const CaptureRuns& runs) {
   CaptureFacts out;
   out.known = true;
   out.largest_root_step = largest_root_step(m, runs);
+  motion_release_pages(m);
   out.root_lo = glm::dvec3(std::numeric_limits<double>::infinity());
   out.root_hi = glm::dvec3(-std::numeric_limits<double>::infinity());
   for (int f = 0; f < m.frame_count; ++f) {
+    release_behind(m, f);
     out.root_lo = glm::min(out.root_lo, m.translation(f, 0));
     out.root_hi = glm::max(out.root_hi, m.translation(f, 0));
   }
@@ -117,6 +129,7 @@ CaptureFacts capture_facts(const Motion& m, const CaptureRuns& runs) {
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(m.frame_count), 0);
   for (std::size_t l = 0; l < legs.size(); ++l)
     out.knee_hinges.push_back(leg_facts(m, runs, legs[l], static_cast<int>(l), flags));
+  motion_release_pages(m);
   out.foot_flags = std::move(flags);
   return out;
 }

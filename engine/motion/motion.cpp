@@ -1,5 +1,6 @@
 #include "engine/motion/motion.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -151,6 +152,14 @@ void motion_release_pages(const Motion& m) {
   release_mapped_pages(m.rotations.data(), m.rotations.size() * sizeof(glm::dquat));
   release_mapped_pages(m.translations.data(), m.translations.size() * sizeof(glm::dvec3));
   release_mapped_pages(m.euler_hints.data(), m.euler_hints.size() * sizeof(glm::dvec3));
+}
+
+void motion_release_frames(const Motion& m, int first, int count) {
+  const std::size_t j = static_cast<std::size_t>(m.joint_count());
+  const std::size_t at = static_cast<std::size_t>(first) * j;
+  const std::size_t n = static_cast<std::size_t>(count) * j;
+  m.rotations.release_pages(at, std::min(n, m.rotations.size() - std::min(at, m.rotations.size())));
+  m.translations.release_pages(at, std::min(n, m.translations.size() - std::min(at, m.translations.size())));
 }
 
 }  // namespace gmg

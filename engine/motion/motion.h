@@ -95,5 +95,8 @@ void motion_check_finite(const Motion& m, const std::string& what);
 // calls it when done with a stretch, so that what stays resident is what it reads next, not every
 // stretch it ever read (engine/core/files.h release_mapped_pages). Nothing for owned samples.
 void motion_release_pages(const Motion& m);
+// The same for frames [first, first + count) only: a pass over a long motion calls it every
+// stretch so that a 19 h reference spilled to disk is never all resident at once.
+void motion_release_frames(const Motion& m, int first, int count);
 
 }  // namespace gmg

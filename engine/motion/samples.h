@@ -26,15 +26,12 @@ class Samples {
 
   Samples() = default;
   Samples(std::vector<T> values) : own_(std::move(values)) {}  // NOLINT(google-explicit-constructor)
-  // size values at data, read in place while `owner` lives; `mapping` (when given) is the file
-  // mapping they lie in, whose pages release_pages gives back.
-  static Samples view(const T* data, std::size_t size, const std::shared_ptr<const void>& owner,
-                      const MappedFile* mapping = nullptr) {
+  // size values at data, read in place while `owner` lives.
+  static Samples view(const T* data, std::size_t size, const std::shared_ptr<const void>& owner) {
     Samples s;
     s.view_ = data;
     s.view_size_ = size;
     s.owner_ = owner;
-    s.mapping_ = mapping;
     return s;
   }
 
@@ -42,9 +39,7 @@ class Samples {
   // place from a file's mapping (a pass over a large array then leaves nothing resident; a later
   // read maps them again); nothing for values in memory.
   void release_pages(std::size_t first, std::size_t count) const {
-    if (!is_view() || !mapping_) return;
-    const char* at = reinterpret_cast<const char*>(view_ + first);
-    mapping_->release(static_cast<std::size_t>(at - mapping_->data()), count * sizeof(T));
+    if (is_view()) release_mapped_pages(view_ + first, count * sizeof(T));
   }
 
   // True when the values are read in place from another object's memory.
@@ -66,7 +61,6 @@ class Samples {
       view_ = nullptr;
       view_size_ = 0;
       owner_.reset();
-      mapping_ = nullptr;
     }
     return own_;
   }
@@ -102,14 +96,12 @@ class Samples {
     view_ = nullptr;
     view_size_ = 0;
     owner_.reset();
-    mapping_ = nullptr;
     return own_;
   }
   std::vector<T> own_;
   const T* view_ = nullptr;
   std::size_t view_size_ = 0;
   std::shared_ptr<const void> owner_;
-  const MappedFile* mapping_ = nullptr;  // kept alive by owner_
 };
 
 }  // namespace gmg
