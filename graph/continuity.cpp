@@ -124,7 +124,7 @@ std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const
   if (static_cast<int>(theta.size()) != n) throw Error("continuity_analysis: theta has the wrong size");
   std::vector<Transition> edges;
   if (n < 2) return edges;
-  const CandidateSearch search(std::move(space), theta, params, neighbour_search_for(params, n));
+  const CandidateSearch search(std::move(space), theta, params, params.neighbours);
 
   // 1. Every frame's candidates and pruning 1, in parallel and in the tree's order (each thread
   //    takes a run of neighbouring frames, whose searches read the same part of the tree).

@@ -1,6 +1,7 @@
 #include "graph/neighbours.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "engine/core/parallel.h"
@@ -19,6 +20,16 @@ NeighbourSearch neighbour_search_for(const GraphParams& params, int frames) {
   return frames <= params.exact_frames ? NeighbourSearch::Exact : NeighbourSearch::Approximate;
 }
 
+long search_checks(const GraphParams& params, int frames, NeighbourSearch search) {
+  if (search == NeighbourSearch::Auto) {
+    if (neighbour_search_for(params, frames) == NeighbourSearch::Exact) return 0;
+    if (frames <= kAnnChecksFrames || params.ann_checks == 0) return params.ann_checks;
+    const double doublings = std::log2(static_cast<double>(frames) / kAnnChecksFrames);
+    return std::lround(params.ann_checks * (1.0 + kAnnChecksGrowth * doublings));
+  }
+  return search == NeighbourSearch::Exact ? 0 : params.ann_checks;
+}
+
 int candidate_search_workers() { return std::min(kMaxCandidateWorkers, worker_count(0)); }
 
 int candidate_limit(const GraphParams& params) {
@@ -29,8 +40,7 @@ int candidate_limit(const GraphParams& params) {
 
 CandidateSearch::CandidateSearch(neighbours::PoseSpace&& space, const std::vector<double>& theta,
                                  const GraphParams& params, NeighbourSearch search) {
-  if (search == NeighbourSearch::Auto) search = neighbour_search_for(params, space.frames());
-  const long checks = search == NeighbourSearch::Exact ? 0 : params.ann_checks;
+  const long checks = search_checks(params, space.frames(), search);
   tree_ = std::make_unique<neighbours::CandidateTree>(std::move(space), theta, params, checks);
 }
 

@@ -8,9 +8,10 @@
 // One search finds it (graph/tree_finder.h): a k-d tree over principal-axis projections of the
 // pose space (graph/pose_space.h), whose boxes and points bound d from below, searched best first
 // and refined by d. Searched to the end (NeighbourSearch::Exact) it finds K_l exactly; with a
-// budget (Approximate: at most ann_checks frames examined per frame) its time per frame does not
-// grow with the reference, and it misses a few far members (recall >= 0.95 of the exact pairs on
-// the shared recordings and synthetic speakers up to 19 h; docs/performance.md).
+// budget (Approximate: at most ann_checks frames examined per frame; under Auto a budget that
+// grows with the log of the length, search_checks) its time per frame grows little with the
+// reference, and it misses a few far members (recall >= 0.95 of the exact pairs on synthetic
+// speakers up to 19 h; docs/performance.md).
 // Distances are screened in single precision; any decision within float error of a threshold or
 // of the k-th distance is taken on d in double, so the exact search gives K_l exactly.
 #pragma once
@@ -31,6 +32,11 @@ class PoseSpace;
 
 // The search `params.neighbours` asks for with `frames` frames (Auto resolved).
 NeighbourSearch neighbour_search_for(const GraphParams& params, int frames);
+
+// Frames the search examines per frame at most for `frames` frames (0: to the end, exact):
+// Exact 0, Approximate params.ann_checks, Auto 0 up to params.exact_frames and above it
+// params.ann_checks grown past kAnnChecksFrames as graph/params.h says.
+long search_checks(const GraphParams& params, int frames, NeighbourSearch search);
 
 // K_l's size bound (see above); 0 = unbounded.
 int candidate_limit(const GraphParams& params);

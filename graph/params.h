@@ -53,9 +53,20 @@ struct GraphParams {
   // so the edges do not jump at this length.
   int exact_frames = 15000;
   // Approximate: frames examined per frame at most (whole leaves of 16 of the tree, nearest box
-  // first); 0 = until exact.
+  // first); 0 = until exact. Under Auto this is the budget up to kAnnChecksFrames frames, and it
+  // grows beyond them (kAnnChecksGrowth, below).
   int ann_checks = 2000;
 };
+
+// Auto's budget beyond an hour at 30 fps: ann_checks * (1 + kAnnChecksGrowth * log2(frames /
+// kAnnChecksFrames)), a quarter more per doubling of the reference (graph/neighbours.h
+// search_checks). A fixed budget loses recall as the tree grows (2,000 checks on synthetic
+// speakers of 25 joints: 0.97 of the exact candidates at 1 h, 0.95 at 2 h, 0.93 at 4 h, 0.90 at
+// 8 h); this keeps it at about 0.97 (2,500 at 2 h: 0.97, 3,000 at 4 h, 3,500 at 8 h) for a
+// cost per frame that grows with the log of the length, as the tree's depth does.
+// docs/performance.md, "The k-d tree against FLANN", has the measurements.
+inline constexpr int kAnnChecksFrames = 108000;
+inline constexpr double kAnnChecksGrowth = 0.25;
 
 // Throws gmg::Error naming the first key out of range.
 void graph_params_validate(const GraphParams& params);

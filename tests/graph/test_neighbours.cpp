@@ -185,6 +185,21 @@ TEST(Neighbours, AutoSearchesExactlyUpToExactFrames) {
   EXPECT_EQ(candidate_limit(p), 0);
 }
 
+TEST(Neighbours, AutosBudgetGrowsAQuarterPerDoublingPastAnHour) {
+  GraphParams p;  // ann_checks 2000, exact_frames 15000, kAnnChecksFrames 108000
+  EXPECT_EQ(search_checks(p, 15000, NeighbourSearch::Auto), 0);  // searched to the end
+  EXPECT_EQ(search_checks(p, 15001, NeighbourSearch::Auto), 2000);
+  EXPECT_EQ(search_checks(p, 108000, NeighbourSearch::Auto), 2000);
+  EXPECT_EQ(search_checks(p, 216000, NeighbourSearch::Auto), 2500);   // 2000 * (1 + 1/4)
+  EXPECT_EQ(search_checks(p, 432000, NeighbourSearch::Auto), 3000);   // two doublings
+  EXPECT_EQ(search_checks(p, 1728000, NeighbourSearch::Auto), 4000);  // four: 16 h
+  // Asked for by name, the budget is ann_checks at every length.
+  EXPECT_EQ(search_checks(p, 1728000, NeighbourSearch::Approximate), 2000);
+  EXPECT_EQ(search_checks(p, 1728000, NeighbourSearch::Exact), 0);
+  p.ann_checks = 0;  // 0 stays "to the end"
+  EXPECT_EQ(search_checks(p, 1728000, NeighbourSearch::Auto), 0);
+}
+
 // One rule at every length: the bound applies below exact_frames as above it, and the two
 // searches Auto switches between give the same edges, so a reference just under exact_frames
 // and one just over get the same analysis.
