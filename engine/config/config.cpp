@@ -159,7 +159,8 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
               "auto: the exact search up to this many frames, the k-d tree above (same candidates up to "
               "ann_checks)",
               &Config::graph, &GraphParams::exact_frames, 0, 100000000),
-      int_key("ann_checks", "approximate search: frames examined per frame at most; under auto up to 1 h at 30 fps, a quarter "
+      int_key("ann_checks",
+              "approximate search: frames examined per frame at most; under auto up to 1 h at 30 fps, a quarter "
               "more per doubling beyond (0: until exact)",
               &Config::graph, &GraphParams::ann_checks, 0, 100000000),
       int_key("l_npaths", "beam width and number of start nodes", &Config::search, &SearchParams::l_npaths, 1, 1000),
