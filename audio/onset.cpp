@@ -356,8 +356,8 @@ struct RealFft {
     for (int k0 = 0; k0 < kHalf / 2; k0 += kLanes) {
       const int r0 = kHalf - k0 - (kLanes - 1);  // lane l: k = k0 + l, r = kHalf - k0 - l
       lanes::Floats vk, vr;
-      std::memcpy(&vk, zf + 2 * k0, sizeof vk);
-      std::memcpy(&vr, zf + 2 * r0, sizeof vr);
+      std::memcpy(&vk, zf + 2 * static_cast<std::ptrdiff_t>(k0), sizeof vk);
+      std::memcpy(&vr, zf + 2 * static_cast<std::ptrdiff_t>(r0), sizeof vr);
       LanesF kre, kim, rre, rim;
       lanes::deinterleave(vk, kre, kim);
       lanes::deinterleave_reversed(vr, rre, rim);
@@ -468,10 +468,11 @@ std::vector<float> envelope_of(OnsetSignal& y) {
       const double* power = &block.power[static_cast<std::size_t>(band.first) * kFrames];
       Lanes acc[kVectors] = {};
       for (std::size_t k = 0; k < band.w.size(); ++k)
-        for (int v = 0; v < kVectors; ++v) acc[v] += band.w[k] * lanes::load(power + k * kFrames + v * kLanes);
+        for (int v = 0; v < kVectors; ++v)
+          acc[v] += band.w[k] * lanes::load(power + k * kFrames + static_cast<std::size_t>(v) * kLanes);
       for (int v = 0; v < kVectors; ++v) {
         const Lanes db = power_to_db_lanes(acc[v]);
-        std::memcpy(&S[static_cast<std::size_t>(m * stride + t0 + v * kLanes)], &db, sizeof db);
+        std::memcpy(&S[static_cast<std::size_t>(m * stride + t0 + static_cast<long long>(v) * kLanes)], &db, sizeof db);
         max_db = select(max_db < db, db, max_db);
       }
     }

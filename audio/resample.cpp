@@ -118,8 +118,9 @@ struct Polyphase {
       for (; j0 + lanes::kWidth <= width; j0 += lanes::kWidth) {
         for (int l0 = 0; l0 < kLanes; l0 += lanes::kWidth) {
           double* dst = &xt[static_cast<std::size_t>(j0 * kLanes + l0)];
-          lanes::transpose<Lanes>([&](int l) { return lanes::load_widened(src + (l0 + l) * down + j0); },
-                                  [&](int i, const Lanes& v) { std::memcpy(dst + i * kLanes, &v, sizeof v); });
+          lanes::transpose<Lanes>(
+              [&](int l) { return lanes::load_widened(src + (l0 + l) * down + j0); },
+              [&](int i, const Lanes& v) { std::memcpy(dst + static_cast<std::ptrdiff_t>(i) * kLanes, &v, sizeof v); });
         }
       }
       for (long long j = j0; j < width; ++j) {
@@ -152,7 +153,8 @@ struct Polyphase {
     const auto store = [&](long long j, const Lanes(&acc)[kVectors]) {
       for (int v = 0; v < kVectors; ++v) {
         const LanesF f = __builtin_convertvector(acc[v], LanesF);
-        std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + v * lanes::kWidth)], &f, sizeof f);
+        std::memcpy(&yt[static_cast<std::size_t>(j * kLanes + static_cast<long long>(v) * lanes::kWidth)], &f,
+                    sizeof f);
       }
     };
     long long pa = p, ia = x0;
@@ -172,8 +174,8 @@ struct Polyphase {
       for (long long t = 0; t < len; ++t) {
         for (int v = 0; v < kVectors; ++v) {
           Lanes va, vb;
-          std::memcpy(&va, xa + t * kLanes + v * lanes::kWidth, sizeof va);
-          std::memcpy(&vb, xb + t * kLanes + v * lanes::kWidth, sizeof vb);
+          std::memcpy(&va, xa + t * kLanes + static_cast<long long>(v) * lanes::kWidth, sizeof va);
+          std::memcpy(&vb, xb + t * kLanes + static_cast<long long>(v) * lanes::kWidth, sizeof vb);
           a[v] += ha[t] * va;
           b[v] += hb[t] * vb;
         }

@@ -34,7 +34,7 @@ namespace {
 void append_upper_body_speed(const PoseFeatures& f, const std::vector<int>& joints, std::vector<float>& out) {
   for (Eigen::Index t = 0; t < f.velocities.cols(); ++t) {
     double sum = 0.0;
-    for (int j : joints) sum += f.velocities.block<3, 1>(3 * j, t).norm();
+    for (int j : joints) sum += f.velocities.block<3, 1>(3 * static_cast<Eigen::Index>(j), t).norm();
     out.push_back(joints.empty() ? 0.0f : static_cast<float>(sum / static_cast<double>(joints.size())));
   }
 }

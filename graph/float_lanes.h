@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #if defined(__SSE__)
@@ -66,7 +67,7 @@ struct Sixteen {
   }
   static Sixteen at(const float* p) {
     Sixteen s;
-    for (int i = 0; i < kParts; ++i) s.part[i] = load(p + i * kLanes);
+    for (int i = 0; i < kParts; ++i) s.part[i] = load(p + static_cast<std::ptrdiff_t>(i) * kLanes);
     return s;
   }
   void store(float* p) const { std::memcpy(p, part, sizeof part); }

@@ -27,7 +27,7 @@ CandidateTree::CandidateTree(PoseSpace&& space, const std::vector<double>& theta
   space_.set_order(order_);
   // The leaves' projections, dimension-major within each leaf.
   const std::size_t leaves = (static_cast<std::size_t>(n) + kLeaf - 1) / kLeaf;
-  blocks_ = RowChunks(kDims * kLeaf);
+  blocks_ = RowChunks(static_cast<std::size_t>(kDims) * kLeaf);
   blocks_.resize(leaves);
   for (int s = 0; s < n; ++s) {
     float* block = blocks_.row(static_cast<std::size_t>(s / kLeaf));
@@ -95,11 +95,11 @@ unsigned CandidateTree::leaf_within(int begin, const float* q, float radius) con
   for (int c = 0; c < kLeaf; c += kLanes) {
     Floats sp = {}, sv = {};
     for (int d = 0; d < 8; ++d) {
-      const Floats g = load(block + d * kLeaf + c) - q[d];
+      const Floats g = load(block + static_cast<std::ptrdiff_t>(d * kLeaf + c)) - q[d];
       sp += g * g;
     }
     for (int d = 8; d < kDims; ++d) {
-      const Floats g = load(block + d * kLeaf + c) - q[d];
+      const Floats g = load(block + static_cast<std::ptrdiff_t>(d * kLeaf + c)) - q[d];
       sv += g * g;
     }
     const Floats lb = space_.lambda_pos() * square_root(sp) + space_.lambda_vel() * square_root(sv);

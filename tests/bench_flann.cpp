@@ -286,6 +286,7 @@ Space proj_space(const Reference& ref) {
   s.name = "proj";
   // The rows in use: the position axes (rows 0 to 7), then the velocity axes (from row 8).
   std::vector<int> rows;
+  rows.reserve(static_cast<std::size_t>(ps.position_dims() + ps.velocity_dims()));
   for (int d = 0; d < ps.position_dims(); ++d) rows.push_back(d);
   for (int d = 0; d < ps.velocity_dims(); ++d) rows.push_back(8 + d);
   s.dims = static_cast<int>(rows.size());
@@ -359,9 +360,9 @@ double projected(const Row& r, const Reference& ref) {
   return r.build_s + r.cpu_s * static_cast<double>(ref.features.frame_count()) / static_cast<double>(ref.frames.size());
 }
 
-void run_length(double hours, const Options& o) {
+// The reference of `hours` (synthetic, 25 joints, seed 3), its thresholds and the query frames.
+Reference make_reference(double hours, const Options& o) {
   Reference ref;
-  Timer total;
   {
     SynthSpec spec;
     spec.duration_s = hours * 3600.0;
@@ -412,6 +413,98 @@ void run_length(double hours, const Options& o) {
   }
   std::printf("  query frames: %zu (%d blocks of %d at random places), the same for every method\n", ref.frames.size(),
               want, o.block);
+  return ref;
+}
+
+// The fastest of each at recall >= 0.95 again, `repeat` more runs each, 1 and 2 workers / cores.
+void repeat_fastest(const Options& o, const Reference& ref, const Lists& exact, const Best& ours_best,
+                    const Best& flann_best, const neighbours::PoseSpace& space, double space_s) {
+  const int n = ref.features.frame_count();
+  if (o.repeat > 0)
+    std::printf(
+        "  fastest with recall >= 0.95 (by build + query CPU scaled to all frames), %d more runs each, "
+        "median [min, max]:\n",
+        o.repeat);
+  auto summary = [&](const char* what, const std::vector<Row>& rows) {
+    std::vector<double> b, c, w, p, pw;
+    const double scale = static_cast<double>(n) / static_cast<double>(ref.frames.size());
+    for (const Row& r : rows) {
+      b.push_back(r.build_s), c.push_back(r.cpu_s), w.push_back(r.wall_s);
+      p.push_back(r.build_s + r.cpu_s * scale), pw.push_back(r.build_s + r.wall_s * scale);
+    }
+    auto lo = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
+    auto hi = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+    std::printf(
+        "  %s: recall %.4f\n    build %.2f s [%.2f, %.2f], query CPU %.2f s [%.2f, %.2f], wall %.2f s "
+        "[%.2f, %.2f];\n    all %d frames projected: build + CPU %.1f s [%.1f, %.1f], build + wall %.1f s "
+        "[%.1f, %.1f]\n",
+        what, rows.front().recall, median(b), lo(b), hi(b), median(c), lo(c), hi(c), median(w), lo(w), hi(w), n,
+        median(p), lo(p), hi(p), median(pw), lo(pw), hi(pw));
+    std::fflush(stdout);
+  };
+  if (o.repeat == 0) {
+    // (no repeats asked for)
+  } else if (ours_best.found) {
+    for (const int workers : {1, 2}) {
+      std::vector<Row> rows;
+      for (int i = 0; i < o.repeat; ++i) {
+        Row r;
+        const Lists found = run_ours(ref, ours_best.checks, workers, r);
+        r.recall = candidate_recall(found, exact);
+        rows.push_back(r);
+      }
+      summary(("ours " + rows.front().params).c_str(), rows);
+    }
+  } else {
+    std::printf("  ours: no setting reached recall 0.95\n");
+  }
+  if (o.repeat == 0) {
+    // (no repeats asked for)
+  } else if (flann_best.found) {
+    const Space s = flann_best.setting.space == "full" ? full_space(ref) : proj_space(ref);
+    const flann::Matrix<float> data(const_cast<float*>(s.data.data()), static_cast<std::size_t>(n),
+                                    static_cast<std::size_t>(s.dims));
+    for (const int cores : {1, 2}) {
+      std::vector<Row> rows;
+      for (int i = 0; i < o.repeat; ++i) {
+        flann::seed_random(1);
+        Timer tb;
+        FlannIndex index(data, flann_best.setting.params);
+        index.buildIndex();
+        Row r;
+        r.build_s = space_s + s.build_s + tb.wall();
+        const Lists found = run_flann(ref, space, s, index, flann_best.kprime, flann_best.checks, cores, r);
+        r.recall = candidate_recall(found, exact);
+        rows.push_back(r);
+      }
+      summary(("flann " + describe(flann_best.setting, flann_best.kprime, flann_best.checks, cores)).c_str(), rows);
+    }
+  } else {
+    std::printf("  flann: no setting reached recall 0.95\n");
+  }
+}
+
+// Checks `count` of the exact search's lists, spread over the query frames, against brute force.
+void check_against_brute_force(const Reference& ref, const Lists& exact, int count) {
+  std::vector<int> pick;
+  std::vector<std::size_t> at;
+  for (int i = 0; i < count; ++i) {
+    const std::size_t j = static_cast<std::size_t>(i) * ref.frames.size() / static_cast<std::size_t>(count);
+    pick.push_back(ref.frames[j]);
+    at.push_back(j);
+  }
+  Timer t;
+  const Lists bf = brute_force(ref, pick);
+  int same = 0;
+  for (std::size_t i = 0; i < pick.size(); ++i) same += bf[i] == exact[at[i]] ? 1 : 0;
+  std::printf("  brute-force check of the exact reference: %d of %zu frames identical (%.1f s)\n", same, pick.size(),
+              t.wall());
+}
+
+void run_length(double hours, const Options& o) {
+  Timer total;
+  const Reference ref = make_reference(hours, o);
+  const int n = ref.features.frame_count();
   print_header();
 
   // 1. Ours.
@@ -425,21 +518,7 @@ void run_length(double hours, const Options& o) {
   std::printf("  exact K_l: %.1f members per query frame on average, %.1f%% of frames have the full %zu\n",
               static_cast<double>(members) / static_cast<double>(exact.size()),
               100.0 * static_cast<double>(full) / static_cast<double>(exact.size()), bound);
-  if (o.brute > 0) {
-    std::vector<int> pick;
-    std::vector<std::size_t> at;
-    for (int i = 0; i < o.brute; ++i) {
-      const std::size_t j = static_cast<std::size_t>(i) * ref.frames.size() / static_cast<std::size_t>(o.brute);
-      pick.push_back(ref.frames[j]);
-      at.push_back(j);
-    }
-    Timer t;
-    const Lists bf = brute_force(ref, pick);
-    int same = 0;
-    for (std::size_t i = 0; i < pick.size(); ++i) same += bf[i] == exact[at[i]] ? 1 : 0;
-    std::printf("  brute-force check of the exact reference: %d of %zu frames identical (%.1f s)\n", same, pick.size(),
-                t.wall());
-  }
+  if (o.brute > 0) check_against_brute_force(ref, exact, o.brute);
   std::fflush(stdout);
 
   Best ours_best;
@@ -505,69 +584,8 @@ void run_length(double hours, const Options& o) {
     }
   }
 
-  // 3. The fastest of each at recall >= 0.95, again: `repeat` runs, 1 and 2 workers / cores.
-  if (o.repeat > 0)
-    std::printf(
-        "  fastest with recall >= 0.95 (by build + query CPU scaled to all frames), %d more runs each, "
-        "median [min, max]:\n",
-        o.repeat);
-  auto summary = [&](const char* what, const std::vector<Row>& rows) {
-    std::vector<double> b, c, w, p, pw;
-    const double scale = static_cast<double>(n) / static_cast<double>(ref.frames.size());
-    for (const Row& r : rows) {
-      b.push_back(r.build_s), c.push_back(r.cpu_s), w.push_back(r.wall_s);
-      p.push_back(r.build_s + r.cpu_s * scale), pw.push_back(r.build_s + r.wall_s * scale);
-    }
-    auto lo = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
-    auto hi = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
-    std::printf(
-        "  %s: recall %.4f\n    build %.2f s [%.2f, %.2f], query CPU %.2f s [%.2f, %.2f], wall %.2f s "
-        "[%.2f, %.2f];\n    all %d frames projected: build + CPU %.1f s [%.1f, %.1f], build + wall %.1f s "
-        "[%.1f, %.1f]\n",
-        what, rows.front().recall, median(b), lo(b), hi(b), median(c), lo(c), hi(c), median(w), lo(w), hi(w), n,
-        median(p), lo(p), hi(p), median(pw), lo(pw), hi(pw));
-    std::fflush(stdout);
-  };
-  if (o.repeat == 0) {
-    // (no repeats asked for)
-  } else if (ours_best.found) {
-    for (const int workers : {1, 2}) {
-      std::vector<Row> rows;
-      for (int i = 0; i < o.repeat; ++i) {
-        Row r;
-        const Lists found = run_ours(ref, ours_best.checks, workers, r);
-        r.recall = candidate_recall(found, exact);
-        rows.push_back(r);
-      }
-      summary(("ours " + rows.front().params).c_str(), rows);
-    }
-  } else {
-    std::printf("  ours: no setting reached recall 0.95\n");
-  }
-  if (o.repeat == 0) {
-    // (no repeats asked for)
-  } else if (flann_best.found) {
-    const Space s = flann_best.setting.space == "full" ? full_space(ref) : proj_space(ref);
-    const flann::Matrix<float> data(const_cast<float*>(s.data.data()), static_cast<std::size_t>(n),
-                                    static_cast<std::size_t>(s.dims));
-    for (const int cores : {1, 2}) {
-      std::vector<Row> rows;
-      for (int i = 0; i < o.repeat; ++i) {
-        flann::seed_random(1);
-        Timer tb;
-        FlannIndex index(data, flann_best.setting.params);
-        index.buildIndex();
-        Row r;
-        r.build_s = space_s + s.build_s + tb.wall();
-        const Lists found = run_flann(ref, space, s, index, flann_best.kprime, flann_best.checks, cores, r);
-        r.recall = candidate_recall(found, exact);
-        rows.push_back(r);
-      }
-      summary(("flann " + describe(flann_best.setting, flann_best.kprime, flann_best.checks, cores)).c_str(), rows);
-    }
-  } else {
-    std::printf("  flann: no setting reached recall 0.95\n");
-  }
+  // 3. The fastest of each at recall >= 0.95, again.
+  if (o.repeat > 0) repeat_fastest(o, ref, exact, ours_best, flann_best, space, space_s);
   double load[3] = {0, 0, 0};
   getloadavg(load, 3);
   std::printf("  %.2f h done in %.0f s of wall; peak RSS so far %.0f MiB; load average %.2f %.2f %.2f\n", hours,

@@ -52,7 +52,7 @@ struct Row {
 
 // Writes the speaker of `seconds` into dir/clips_<tag>/ as clips of at most an hour.
 std::string write_speaker(const std::string& dir, const std::string& tag, double seconds, int joints) {
-  const std::string clips = dir + "/clips_" + tag;
+  std::string clips = dir + "/clips_" + tag;
   std::filesystem::create_directories(clips);
   int part = 0;
   for (double left = seconds; left > 1e-9; left -= 3600.0, ++part) {

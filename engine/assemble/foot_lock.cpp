@@ -116,6 +116,17 @@ void track_at(const FootTrack& t, double time, glm::dvec3& pos, glm::dquat& rot)
   rot = slerp_shortest(rf, rg, a);
 }
 
+// Where a foot stepping from (from, from_rot) towards the leg's own foot (foot, foot_rot) is shown
+// at s of the step (0 < s <= 1). The step blends with smootherstep (position, velocity and
+// acceleration continuous at both ends) and rises on 16 s^2 (1 - s)^2 times `height`, which leads
+// the blend: the foot leaves the floor before it moves along it and lands before it stops.
+void step_pose(const glm::dvec3& from, const glm::dquat& from_rot, const glm::dvec3& foot, const glm::dquat& foot_rot,
+               double height, double s, glm::dvec3& pos, glm::dquat& rot) {
+  const double w = s * s * s * (s * (6.0 * s - 15.0) + 10.0);
+  pos = (1.0 - w) * from + w * foot + glm::dvec3(0.0, height * 16.0 * s * s * (1 - s) * (1 - s), 0.0);
+  rot = slerp_shortest(from_rot, foot_rot, w);
+}
+
 }  // namespace
 
 void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::vector<Leg>& legs,
@@ -164,20 +175,12 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
       }
       src_previous = src;
       src_previous_rot = src_rot;
-      // Where the foot is shown when free: the leg's own pose, or on its way there in a step. The
-      // step blends with smootherstep (position, velocity and acceleration continuous at both
-      // ends) and rises on 16 s^2 (1 - s)^2, which leads the blend: the foot leaves the floor
-      // before it moves along it and lands before it stops.
+      // Where the foot is shown when free: the leg's own pose, or on its way there in a step.
       glm::dvec3 free_pos = foot;
       glm::dquat free_rot = foot_rot;
-      if (step_at < step_frames) {
-        ++step_at;
-        const double s = static_cast<double>(step_at) / step_frames;
-        const double w = s * s * s * (s * (6.0 * s - 15.0) + 10.0);
-        free_pos =
-            (1.0 - w) * step_pos + w * foot + glm::dvec3(0.0, step_height * 16.0 * s * s * (1 - s) * (1 - s), 0.0);
-        free_rot = slerp_shortest(step_rot, foot_rot, w);
-      }
+      if (step_at < step_frames)
+        step_pose(step_pos, step_rot, foot, foot_rot, step_height, static_cast<double>(++step_at) / step_frames,
+                  free_pos, free_rot);
       // A foot on its way in a step is planted where it is once the step is past its middle and the
       // source has the foot on the ground (waiting for the step to end left it sliding along the
       // floor: BEAT2 slide share 4 % against 3 %; earlier, it would be planted again where it just

@@ -327,6 +327,7 @@ TEST(Wav, EveryFormatDecodesAsTheFormulaBitForBit) {
       const Audio from_bytes = gmg::audio::parse_wav(bytes, "formula.wav");
       for (const Audio* a : {&from_file, &from_bytes}) {
         ASSERT_EQ(a->samples.size(), frames);
+        // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): bit for bit is the claim
         EXPECT_EQ(std::memcmp(a->samples.data(), want.data(), frames * sizeof(float)), 0)
             << "tag " << c.tag << ", " << c.bits << " bits, " << channels << " channels";
       }

@@ -92,7 +92,7 @@ inline ClipEvents legged_clip(const std::string& name, int n, double phase) {
   Motion m = motion_rest(sk, 30.0, n);
   for (int f = 0; f < n; ++f) {
     const double t = f * 0.15 + phase;
-    m.translations[m.index(f, 0)] = glm::dvec3(0.05 * static_cast<double>(f / 40), 1.0, 0.0);
+    m.translations[m.index(f, 0)] = glm::dvec3(0.05 * std::floor(f / 40.0), 1.0, 0.0);
     m.rotations[m.index(f, 1)] = glm::angleAxis(0.4 * std::sin(t), glm::dvec3(0, 0, 1));
     m.rotations[m.index(f, 4)] = glm::angleAxis(0.3 + 0.3 * std::sin(0.5 * t), glm::dvec3(1, 0, 0));
   }

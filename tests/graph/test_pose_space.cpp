@@ -33,6 +33,7 @@ PoseFeatures random_features(int dims, int n, unsigned seed, const std::vector<i
   return f;
 }
 
+// NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): the bits are what is compared
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The order graph/float_lanes.h promises, written out one float at a time: sixteen running sums,
@@ -86,6 +87,7 @@ TEST(FeatureStore, DistanceIsPoseDistanceBitForBitAcrossClips) {
     for (int r = 0; r < 60; r += 3) {
       const double expected = pose_distance(f, l, r, p);
       const double got = store->distance(l, r, p);
+      // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): the bits are what is compared
       EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << l << " " << r;
     }
 }

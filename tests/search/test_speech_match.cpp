@@ -84,7 +84,7 @@ TEST(SpeechMatch, EndingOnAKinematicBeatCostsNothing) {
   // Activity falls to a minimum at frame 10 (above the 0.3 floor) and rises again.
   MotionGraph g = chain_graph(21, {}, {}, {});
   g.speech_dims = 2;
-  g.speech.assign(2 * 21, 0.0f);
+  g.speech.assign(std::size_t{2} * 21, 0.0f);
   for (int f = 0; f < 21; ++f) g.activity.push_back(1.0f + 0.05f * static_cast<float>(std::abs(f - 10)));
   const SpeechMatch m(g, std::vector<float>(2, 0.0f), 1);
   EXPECT_NEAR(m.end_cost(10), 0.0, 1e-12);
