@@ -213,9 +213,9 @@ TEST(Neighbours, TheSameBoundedEdgesOnBothSidesOfExactFrames) {
   std::vector<int> out_degree(400, 0);
   for (const auto& [from, to, w] : expected) ++out_degree[static_cast<std::size_t>(from)];
   ASSERT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "the bound must bind";
-  p.exact_frames = 400;  // Auto: the tiled exact search
+  p.exact_frames = 400;  // Auto: the tree searched to the end
   EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p)), expected);
-  p.exact_frames = 399;  // Auto: the tree
+  p.exact_frames = 399;  // Auto: the tree within ann_checks (0 here: also to the end)
   EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p)), expected);
   GraphParams unbounded = p;
   unbounded.max_transitions = 0;
