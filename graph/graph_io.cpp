@@ -1,32 +1,43 @@
 // Saving and loading built graphs.
 //
-// File format (version 6), little-endian:
+// File format (version 7), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   payload  params, skeleton, clips, motion, nodes, edges, speech features, activity, key poses
-//            (write_payload), the reference facts (write_reference_facts: the assembly's capture
-//            facts and the frames' beat end costs, graph/reference_facts.h), the SMPL-X body
-//            (write_body: empty for BVH references)
-//   u64      checksum of the payload (engine/core/checksum.h)
+//   u64      how many of the payload's first bytes the checksum covers: all but the motion's values
+//   payload  params, skeleton, clips, the motion's frame rate and count, nodes, edges, speech
+//            features, activity, key poses (write_payload), the reference facts
+//            (write_reference_facts: the assembly's capture facts and the frames' beat end costs,
+//            graph/reference_facts.h), the SMPL-X body (write_body: empty for BVH references), and
+//            last the motion (write_motion): frames per block, each block's checksum, then the
+//            rotations and the translations
+//   u64      checksum of the payload's first bytes (XXH3-64, engine/core/checksum.h)
 // The large parts are flat arrays in the layout they have in memory. The eight largest (the
 // motion's rotations and translations, the speech features, the motion activity, the key
 // nodes' junction poses, the foot contacts, the beat end costs and the body's face) each start on
 // a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads the first
-// seven in place from the file's mapping (engine/core/files.h MappedFile): a load costs one checksum and validation
-// pass, the pages of the file are shared by every process that reads it, and none of them is kept resident by the load.
-// The face is copied (SmplxBody holds its own arrays; a graph from BVH references has none). The edges and nodes, whose
-// values index other arrays, are validated and copied (a tenth of the file), so a file rewritten in place under a
-// running gmg can give wrong values, never an out-of-bounds read; the mapping then reports the change
-// (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are
-// not stored: the load takes them from the nodes and edges it copies. A file with another magic
-// or version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
-// reference facts), a short or over-long payload or a wrong checksum is rejected before anything
-// is used.
+// seven in place from the file's mapping (engine/core/files.h MappedFile): the pages of the file
+// are shared by every process that reads it, and none of them is kept resident by the load.
+//
+// A load checks the file's checksum and every field of the part it covers in one pass. The
+// motion, most of the file, has a checksum per block of frames instead: the load checks all of
+// them (MotionCheck::OnLoad) or leaves each block to be checked when first used
+// (MotionCheck::OnUse, graph_check_frames), so that a reenactment from a long reference reads only
+// the stretches it plays. The face is copied (SmplxBody holds its own arrays; a graph from BVH
+// references has none). The edges and nodes, whose values index other arrays, are validated and
+// copied (a tenth of the file), so a file rewritten in place under a running gmg can give wrong
+// values, never an out-of-bounds read; the mapping then reports the change
+// (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are not
+// stored: the load takes them from the nodes and edges it copies. A file with another magic or
+// version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
+// reference facts, 6 one checksum over everything), a short or over-long payload or a wrong
+// checksum is rejected before anything is used.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
 
 #include "engine/core/checksum.h"
 #include "engine/core/error.h"
@@ -34,6 +45,7 @@
 #include "engine/core/limits.h"
 #include "engine/core/strings.h"
 #include "engine/motion/body_parts.h"
+#include "engine/motion/motion.h"
 #include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 #include "graph/key_poses.h"
@@ -44,7 +56,11 @@ namespace {
 constexpr char kMagic[8] = {'G', 'M', 'G', 'R', 'A', 'P', 'H', '\0'};
 constexpr std::uint32_t kVersion = kGraphFormatVersion;
 constexpr std::size_t kAlign = 4096;  // the sections read in place start at multiples of it
-constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + sizeof(std::uint64_t);
+// Magic, version, payload size, and how many of the payload's bytes the checksum covers.
+constexpr std::size_t kHeader = sizeof kMagic + sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t);
+// Frames per checked block of the motion: 64 frames of 55 joints are 197 KB, so a reenactment that
+// plays a stretch checks little more than it reads, and the table of a 19 h reference is 256 KB.
+constexpr std::uint32_t kMotionBlockFrames = 64;
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
 // header's size is known before the first byte is written and nothing is buffered.
@@ -53,9 +69,17 @@ class Writer {
   explicit Writer(std::ostream* out) : out_(out) {}
   void bytes(const void* data, std::size_t size) {
     if (out_ && size) out_->write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    sum_.add(data, size);
+    if (summing_) sum_.add(data, size);
     size_ += size;
   }
+  // The checksum covers the bytes written so far and none after (the motion, checked by blocks).
+  void stop_summing() {
+    summing_ = false;
+    summed_ = size_;
+  }
+  std::uint64_t summed() const { return summed_; }
+  // Whether the bytes are written (not only counted).
+  bool writes() const { return out_ != nullptr; }
   template <typename T>
   void pod(const T& v) {
     static_assert(std::is_trivially_copyable<T>::value, "pod only");
@@ -114,6 +138,8 @@ class Writer {
   std::ostream* out_;
   Checksum sum_;
   std::uint64_t size_ = 0;
+  bool summing_ = true;
+  std::uint64_t summed_ = 0;
 };
 
 // Where the payload's bytes are: a mapped file (whose pages a pass gives back as it goes) or a
@@ -221,8 +247,25 @@ class Reader {
     }
   }
   bool done() const { return pos_ == size_; }
-  // The checksum of every byte read so far.
+  // What keeps the bytes alive, for the arrays read in place.
+  const std::shared_ptr<const void>& owner() const { return src_.owner; }
+  // The checksum of every byte read so far (up to stop_summing).
   std::uint64_t checksum() const { return sum_.value(); }
+  // The bytes from here on are not summed (the motion, checked by blocks); returns the bytes
+  // summed.
+  std::size_t stop_summing() {
+    summing_ = false;
+    return pos_;
+  }
+  // The n items of T that follow, passed over without reading them (their values are checked
+  // apart: read_motion_values).
+  template <typename T>
+  const T* skip(std::size_t n) {
+    need(n * sizeof(T));
+    const T* p = reinterpret_cast<const T*>(data_ + pos_);
+    consume(n * sizeof(T));
+    return p;
+  }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(error_at_byte(path_, static_cast<long long>(pos_ + kHeader), "damaged graph file: " + what));
   }
@@ -232,7 +275,7 @@ class Reader {
     if (n > size_ - pos_) fail("unexpected end of data");
   }
   void consume(std::size_t n) {
-    sum_.add(data_ + pos_, n);
+    if (summing_) sum_.add(data_ + pos_, n);
     pos_ += n;
   }
   const char* data_;
@@ -241,6 +284,7 @@ class Reader {
   const std::string& path_;
   const Source& src_;
   Checksum sum_;
+  bool summing_ = true;
 };
 
 void write_params(Writer& w, const GraphParams& p) {
@@ -357,6 +401,50 @@ void write_reference_facts(Writer& w, const MotionGraph& g) {
   w.aligned(g.beat_cost.data(), g.beat_cost.size());
 }
 
+// The checksum of the frames of one motion block: their rotations, then their translations.
+std::uint64_t motion_block_sum(const Motion& m, std::size_t first, std::size_t frames) {
+  const std::size_t joints = m.skeleton.joints.size();
+  Checksum c;
+  c.add(m.rotations.data() + first * joints, frames * joints * sizeof(glm::dquat));
+  c.add(m.translations.data() + first * joints, frames * joints * sizeof(glm::dvec3));
+  return c.value();
+}
+
+// Blocks whose pages a pass over the motion gives back together.
+constexpr std::size_t kReleaseBlocks = 32;
+
+// Gives back the pages of motion values from .. to - 1 (of both arrays) when they are read in place
+// from a file's mapping, from the page boundary at or before `from` (blocks do not end on page
+// boundaries: a stretch's last page, part of the next block's, goes with the next stretch).
+void release_motion(const Motion& m, std::size_t from, std::size_t to) {
+  auto back_to_page = [](std::size_t value, std::size_t size) { return value * size / kAlign * kAlign / size; };
+  const std::size_t r = back_to_page(from, sizeof(glm::dquat)), t = back_to_page(from, sizeof(glm::dvec3));
+  m.rotations.release_pages(r, to - r);
+  m.translations.release_pages(t, to - t);
+}
+
+// The motion, last: frames per block, each block's checksum (the last values the file's checksum
+// covers), then the rotations and the translations (aligned), which the blocks' checksums cover.
+// Counting (nothing written), the checksums are zeros of the same size.
+void write_motion(Writer& w, const Motion& m) {
+  const std::size_t frames = static_cast<std::size_t>(m.frame_count), joints = m.skeleton.joints.size();
+  std::vector<std::uint64_t> sums((frames + kMotionBlockFrames - 1) / kMotionBlockFrames);
+  std::size_t stretch = 0;  // the first block whose pages have not been given back
+  for (std::size_t b = 0; b < sums.size() && w.writes(); ++b) {
+    const std::size_t first = b * kMotionBlockFrames, n = std::min<std::size_t>(kMotionBlockFrames, frames - first);
+    sums[b] = motion_block_sum(m, first, n);
+    if (b + 1 - stretch == kReleaseBlocks || b + 1 == sums.size()) {  // a long build's motion is spilled to a file
+      release_motion(m, stretch * kMotionBlockFrames * joints, (first + n) * joints);
+      stretch = b + 1;
+    }
+  }
+  w.pod<std::uint32_t>(kMotionBlockFrames);
+  w.vec(sums);
+  w.stop_summing();
+  w.aligned(m.rotations);
+  w.aligned(m.translations);
+}
+
 void write_payload(Writer& w, const MotionGraph& g) {
   write_params(w, g.params);
   write_skeleton(w, g.motion.skeleton);
@@ -368,8 +456,6 @@ void write_payload(Writer& w, const MotionGraph& g) {
   }
   w.pod(g.motion.fps);
   w.pod<std::int32_t>(g.motion.frame_count);
-  w.aligned(g.motion.rotations);
-  w.aligned(g.motion.translations);
 
   // Nodes: every frame's kinds, then the labels of the keyword nodes only.
   const std::size_t n = static_cast<std::size_t>(g.frame_count());
@@ -395,6 +481,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.aligned(g.key_poses);
   write_reference_facts(w, g);
   write_body(w, g.body);
+  write_motion(w, g.motion);
 }
 
 // The speech features: none, or frames x dims finite values.
@@ -585,59 +672,110 @@ std::vector<ClipInfo> read_clips(Reader& r, long long& covered) {
   return clips;
 }
 
-void read_motion(Reader& r, const Source& src, Motion& m) {
+// The motion's frame rate and frame count (its values are the file's last section: read_motion).
+void read_motion_header(Reader& r, Motion& m) {
   m.fps = r.pod<double>();
   m.frame_count = r.pod<std::int32_t>();
   if (!(m.fps >= limits::kMinFps && m.fps <= limits::kMaxFps))
     r.fail("frame rate " + format_number(m.fps) + " is outside " + format_number(limits::kMinFps) + " to " +
            format_number(limits::kMaxFps) + " fps");
   if (m.frame_count < 1 || m.frame_count > limits::kMaxFrames) r.fail("invalid frame count");
-  const std::size_t joints = m.skeleton.joints.size();
-  const std::size_t expected = static_cast<std::size_t>(m.frame_count) * joints;
-  // Sizes are checked before values: the rotations' count, then the translations' (after the
-  // rotations' values, which lie between them).
-  const auto [rotations, rotations_n] = r.aligned<glm::dquat>();
-  if (rotations_n != expected) r.fail("motion size disagrees with frames x joints");
-  std::size_t bad = expected;
+}
+
+// What checking motion blocks found.
+struct BlockCheck {
+  bool sound = true;
+  bool damaged = false;                         // a block's checksum is wrong (else: a value is bad)
+  std::size_t first_frame = 0, last_frame = 0;  // the damaged block's frames
+  std::size_t bad_frame = 0;                    // the first frame with a value that is not sound
+};
+
+// Checks blocks b0 .. b1 - 1 of g's motion: each block's checksum, then its values (unit
+// rotations, finite translations); stops at the first that fails. `release`: each block's pages
+// are given back after it (a pass over all of a served graph's motion leaves nothing resident).
+BlockCheck check_motion_blocks(const Motion& m, const MotionBlocks& mb, std::size_t b0, std::size_t b1, bool release) {
+  const std::size_t frames = static_cast<std::size_t>(m.frame_count), joints = m.skeleton.joints.size();
+  const std::size_t per = static_cast<std::size_t>(mb.block_frames);
   // A unit rotation: its squared norm within 1e-6 of 1, which no rotation with an infinite or NaN
-  // part has (the comparison with NaN is false). Each chunk is checked as a whole (a count with no
-  // early exit and no call, so the loop vectorises) and searched for its first bad value only when
-  // it has one.
+  // part has (the comparison with NaN is false). s - s is 0 for a finite sum and NaN for an
+  // infinite or NaN one (std::isfinite, a call, would keep the loop scalar). Each block is checked
+  // as a whole (a count with no early exit, so the loops vectorise) and searched for its first bad
+  // value only when it has one.
   auto unit = [](const glm::dquat& q) { return std::abs(glm::dot(q, q) - 1.0) <= 1e-6; };
-  r.in_place<glm::dquat>(expected, [&](const glm::dquat* q, std::size_t first, std::size_t n) {
-    if (bad != expected) return;
+  auto finite = [](const glm::dvec3& v) {
+    const double s = v.x + v.y + v.z;
+    return s - s == 0.0;
+  };
+  BlockCheck out;
+  std::size_t stretch = b0;  // the first block whose pages have not been given back
+  for (std::size_t b = b0; b < b1; ++b) {
+    const std::size_t first = b * per, n = std::min(per, frames - first);
+    const glm::dquat* q = m.rotations.data() + first * joints;
+    const glm::dvec3* t = m.translations.data() + first * joints;
+    const std::size_t values = n * joints;
+    if (motion_block_sum(m, first, n) != mb.sums[b]) {
+      out.sound = false;
+      out.damaged = true;
+      out.first_frame = first;
+      out.last_frame = first + n - 1;
+      return out;
+    }
     std::size_t good = 0;
-    for (std::size_t k = 0; k < n; ++k) good += unit(q[k]) ? 1 : 0;
-    const bool all = good == n;
-    for (std::size_t k = 0; k < n && !all; ++k)
-      if (!unit(q[k])) {
-        bad = first + k;
-        break;
-      }
-  });
-  const auto [translations, translations_n] = r.aligned<glm::dvec3>();
-  if (translations_n != expected) r.fail("motion size disagrees with frames x joints");
-  r.in_place<glm::dvec3>(expected, [&](const glm::dvec3* t, std::size_t first, std::size_t n) {
-    if (first >= bad) return;
-    // s - s is 0 for a finite sum and NaN for an infinite or NaN one (std::isfinite, a call, keeps
-    // the loop scalar).
-    auto finite = [](const glm::dvec3& v) {
-      const double s = v.x + v.y + v.z;
-      return s - s == 0.0;
-    };
-    std::size_t good = 0;
-    for (std::size_t k = 0; k < n; ++k) good += finite(t[k]) ? 1 : 0;
-    const bool all = good == n;
-    for (std::size_t k = 0; k < n && !all && first + k < bad; ++k)
-      if (!finite(t[k])) {
-        bad = first + k;
-        break;
-      }
-  });
-  if (bad != expected)
-    r.fail("frame " + std::to_string(bad / joints) + " holds a value that is not finite or not a unit rotation");
-  m.rotations = Samples<glm::dquat>::view(rotations, expected, src.owner);
-  m.translations = Samples<glm::dvec3>::view(translations, expected, src.owner);
+    for (std::size_t k = 0; k < values; ++k) good += (unit(q[k]) ? 1 : 0) + (finite(t[k]) ? 1 : 0);
+    if (good != 2 * values) {
+      std::size_t k = 0;
+      while (unit(q[k]) && finite(t[k])) ++k;
+      out.sound = false;
+      out.bad_frame = first + k / joints;
+      return out;
+    }
+    if (release && (b + 1 - stretch == kReleaseBlocks || b + 1 == b1)) {
+      release_motion(m, stretch * per * joints, (first + n) * joints);
+      stretch = b + 1;
+    }
+  }
+  return out;
+}
+
+// The motion, the payload's last section (write_motion). `summed_to(bytes)` is called where the
+// file's checksum stops, before any motion value is read; it checks the checksum, so the block
+// checksums are the file's. The motion's values are then checked by blocks, all of them now
+// (MotionCheck::OnLoad, or a graph that lacks what a reenactment would otherwise compute from
+// every frame) or each when first used (graph_check_frames).
+template <typename SummedTo, typename Damaged>
+void read_motion(Reader& r, MotionGraph& g, const std::string& path, MotionCheck mode, const SummedTo& summed_to,
+                 const Damaged& damaged) {
+  Motion& m = g.motion;
+  const std::uint32_t per = r.pod<std::uint32_t>();
+  if (per < 1 || per > (1u << 20)) r.fail("implausible motion block size");
+  const std::size_t frames = static_cast<std::size_t>(m.frame_count), joints = m.skeleton.joints.size();
+  const std::size_t blocks = (frames + per - 1) / per;
+  auto mb = std::make_shared<MotionBlocks>();
+  mb->path = path;
+  mb->block_frames = static_cast<int>(per);
+  mb->sums = r.vec<std::uint64_t>();
+  if (mb->sums.size() != blocks) r.fail("motion block checksums disagree with the frame count");
+  summed_to(r.stop_summing());
+  // Sizes are checked before values: the rotations' count, then the translations'.
+  const std::size_t expected = frames * joints;
+  const auto rotations = r.aligned<glm::dquat>();
+  if (rotations.second != expected) r.fail("motion size disagrees with frames x joints");
+  r.skip<glm::dquat>(expected);
+  const auto translations = r.aligned<glm::dvec3>();
+  if (translations.second != expected) r.fail("motion size disagrees with frames x joints");
+  r.skip<glm::dvec3>(expected);
+  m.rotations = Samples<glm::dquat>::view(rotations.first, expected, r.owner());
+  m.translations = Samples<glm::dvec3>::view(translations.first, expected, r.owner());
+  mb->checked.assign(blocks, 0);
+  const bool computed_from_motion = !g.capture.known || (g.key_poses.empty() && !g.keys.empty());
+  if (mode == MotionCheck::OnUse && !computed_from_motion) {
+    g.unchecked_motion = std::move(mb);
+    return;
+  }
+  const BlockCheck c = check_motion_blocks(m, *mb, 0, blocks, true);
+  if (c.damaged) throw damaged();
+  if (!c.sound)
+    r.fail("frame " + std::to_string(c.bad_frame) + " holds a value that is not finite or not a unit rotation");
 }
 
 // Natural edges are the capture's own frame steps: to the next frame, with weight 0.
@@ -651,13 +789,15 @@ void check_natural_edges(Reader& r, const GraphStorage& g) {
     }
 }
 
-MotionGraph read_payload(Reader& r, const Source& src) {
+template <typename SummedTo, typename Damaged>
+MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, MotionCheck mode,
+                         const SummedTo& summed_to, const Damaged& damaged) {
   MotionGraph g;
   g.params = read_params(r);
   g.motion.skeleton = read_skeleton(r);
   long long covered = 0;
   g.clips = read_clips(r, covered);
-  read_motion(r, src, g.motion);
+  read_motion_header(r, g.motion);
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g.transition_weight);
   check_natural_edges(r, g.graph);
@@ -665,44 +805,55 @@ MotionGraph read_payload(Reader& r, const Source& src) {
   read_key_poses(r, src, g);
   read_reference_facts(r, src, g);
   read_body(r, g);
-  if (!r.done()) r.fail("trailing bytes after the body");
+  read_motion(r, g, path, mode, summed_to, damaged);
+  if (!r.done()) r.fail("trailing bytes after the motion");
   return g;
 }
 
-MotionGraph parse_graph(const Source& src, const std::string& path) {
+MotionGraph parse_graph(const Source& src, const std::string& path, MotionCheck mode) {
   const char* bytes = src.data;
   const std::size_t total = src.size;
   if (total < sizeof kMagic || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
     throw Error(path + ": not a gmg graph file (build one with 'gmg build')");
-  if (total < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
+  if (total < sizeof kMagic + sizeof(std::uint32_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
   std::uint32_t version = 0;
   std::memcpy(&version, bytes + 8, sizeof version);
   if (version != kVersion)
     throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads version " +
                 std::to_string(kVersion) + ": rebuild it with 'gmg build'");
-  std::uint64_t size = 0;
+  if (total < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 12, "graph file is truncated"));
+  std::uint64_t size = 0, summed = 0;
   std::memcpy(&size, bytes + 12, sizeof size);
+  std::memcpy(&summed, bytes + 20, sizeof summed);
   const std::size_t present = total - kHeader - sizeof(std::uint64_t);
   if (size != present)
     throw Error(error_at_byte(path, 12,
                               "graph file is truncated or has trailing bytes (payload " + std::to_string(size) +
                                   " bytes declared, " + std::to_string(present) + " present)"));
+  if (summed > present)
+    throw Error(error_at_byte(path, 20, "damaged graph file: its checksum covers more than the payload"));
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes + kHeader + present, sizeof sum);
   auto damaged = [&] {
     if (src.file) src.file->check_unchanged();  // a file cut short while it was read reads as zeros
     return Error(path + ": graph file is damaged (checksum mismatch)");
   };
-  // One pass checks the fields and sums the bytes (Reader). A damaged file may fail a field's check
-  // before its sum is known: then the whole file is summed, and a wrong checksum is what is said.
+  // One pass checks the fields and sums the bytes (Reader) up to the motion, where the sum is
+  // checked; the motion is checked by blocks (read_motion). A damaged file may fail a field's check
+  // before its sum is known: then the part the checksum covers is summed, and a wrong checksum is
+  // what is said.
   Reader r(bytes + kHeader, present, path, src);
-  try {
-    MotionGraph g = naming_memory_errors(path, "reading the graph", [&] { return read_payload(r, src); });
+  auto summed_to = [&](std::size_t at) {
+    if (at != summed) r.fail("its checksum does not end where the motion starts");
     if (r.checksum() != sum) throw damaged();
-    return g;
+  };
+  try {
+    return naming_memory_errors(path, "reading the graph",
+                                [&] { return read_payload(r, src, path, mode, summed_to, damaged); });
   } catch (const Error&) {
     Checksum checksum;
-    in_chunks(src, bytes + kHeader, present, [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
+    in_chunks(src, bytes + kHeader, static_cast<std::size_t>(summed),
+              [&](const char* p, std::size_t, std::size_t n) { checksum.add(p, n); });
     if (sum != checksum.value()) throw damaged();
     throw;
   }
@@ -723,21 +874,22 @@ void graph_save(const std::string& path, const MotionGraph& g) {
         out.write(kMagic, sizeof kMagic);
         const std::uint32_t version = kVersion;
         out.write(reinterpret_cast<const char*>(&version), sizeof version);
-        const std::uint64_t size = counter.size();
+        const std::uint64_t size = counter.size(), summed = counter.summed();
         out.write(reinterpret_cast<const char*>(&size), sizeof size);
+        out.write(reinterpret_cast<const char*>(&summed), sizeof summed);
         Writer w(&out);
         write_payload(w, g);
-        if (w.size() != size) throw Error(path + ": graph changed while it was written");
+        if (w.size() != size || w.summed() != summed) throw Error(path + ": graph changed while it was written");
         const std::uint64_t sum = w.checksum();
         out.write(reinterpret_cast<const char*>(&sum), sizeof sum);
       },
       true);
 }
 
-MotionGraph graph_load(const std::string& path) {
+MotionGraph graph_load(const std::string& path, MotionCheck motion) {
   auto file = std::make_shared<const MappedFile>(path);
   Source src{file->data(), file->size(), file.get(), file};
-  MotionGraph g = parse_graph(src, path);
+  MotionGraph g = parse_graph(src, path, motion);
   file->expect_random_reads();  // a reenactment reads the key poses and its paths' frames
   g.source = std::move(file);
   g.check_unchanged();
@@ -747,7 +899,34 @@ MotionGraph graph_load(const std::string& path) {
 MotionGraph graph_parse(const std::string& bytes, const std::string& path) {
   // The arrays read in place need bytes that outlive the call.
   auto copy = std::make_shared<const std::string>(bytes);
-  return parse_graph(Source{copy->data(), copy->size(), nullptr, copy}, path);
+  return parse_graph(Source{copy->data(), copy->size(), nullptr, copy}, path, MotionCheck::OnLoad);
+}
+
+void graph_check_frames(const MotionGraph& g, int first, int last) {
+  MotionBlocks* mb = g.unchecked_motion.get();
+  if (!mb || g.frame_count() < 1) return;
+  const int per = mb->block_frames;
+  const int lo = std::clamp(first, 0, g.frame_count() - 1), hi = std::clamp(last, 0, g.frame_count() - 1);
+  if (lo > hi) return;
+  const std::lock_guard<std::mutex> lock(mb->mutex);
+  bool read = false;
+  for (std::size_t b = static_cast<std::size_t>(lo / per); b <= static_cast<std::size_t>(hi / per); ++b) {
+    if (mb->checked[b]) continue;
+    read = true;
+    const BlockCheck c = check_motion_blocks(g.motion, *mb, b, b + 1, false);
+    if (c.damaged) {
+      g.check_unchanged();  // a file cut short or rewritten since the load
+      throw Error(mb->path + ": graph file is damaged (checksum mismatch in frames " + std::to_string(c.first_frame) +
+                  " to " + std::to_string(c.last_frame) + ")");
+    }
+    if (!c.sound)
+      throw Error(mb->path + ": damaged graph file: frame " + std::to_string(c.bad_frame) +
+                  " holds a value that is not finite or not a unit rotation");
+    mb->checked[b] = 1;
+  }
+  // The pages read are given back, all of the motion's: a read maps the page cache's whole large
+  // folio around it (2 MB here), more than the block it reads.
+  if (read) motion_release_pages(g.motion);
 }
 
 }  // namespace gmg

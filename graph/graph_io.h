@@ -10,17 +10,35 @@ namespace gmg {
 
 // The graph file format this gmg writes and reads (graph_io.cpp): 3 added the reference speech
 // features, 4 aligned arrays read in place, 5 the SMPL-X body (shape, per-frame face), 6 the
-// reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h).
-constexpr std::uint32_t kGraphFormatVersion = 6;
+// reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h),
+// 7 the XXH3 checksum (engine/core/checksum.h) and the motion last, with a checksum per block of
+// frames.
+constexpr std::uint32_t kGraphFormatVersion = 7;
 
 // Writes atomically. Throws gmg::Error naming the file when it cannot be written.
 void graph_save(const std::string& path, const MotionGraph& g);
 
+// When the motion's values are checked (the rest of the file is checked by every load).
+enum class MotionCheck {
+  OnLoad,  // all of it, by the load
+  OnUse,   // a block of frames at a time, by graph_check_frames before they are read: a load that
+           // reads the motion only where it is played (a reenactment from a long reference)
+};
+
 // Rejects a file of another format or version, a truncated or damaged one, with a gmg::Error
 // naming it. A file with a valid checksum is still checked field by field (it may have been
 // made by hand): counts within engine/core/limits.h (joints, depth, frames, fps 1 to 1000),
-// finite unit rotations, clips that cover the frames exactly, valid nodes and edges.
-MotionGraph graph_load(const std::string& path);
+// finite unit rotations, clips that cover the frames exactly, valid nodes and edges. With
+// MotionCheck::OnUse the motion's checksums and values are checked by graph_check_frames (and
+// all of it by the load when the graph lacks the key poses or the capture facts, which are then
+// computed from every frame).
+MotionGraph graph_load(const std::string& path, MotionCheck motion = MotionCheck::OnLoad);
+
+// Checks frames first .. last (clamped to the graph) of a graph loaded with MotionCheck::OnUse,
+// the blocks not checked before; nothing for any other graph. Throws gmg::Error naming the file
+// when a block's checksum is wrong ("damaged") or a frame holds a value that is not finite or not
+// a unit rotation. Safe to call from several threads.
+void graph_check_frames(const MotionGraph& g, int first, int last);
 
 // The same for a file's bytes already in memory; `path` labels errors.
 MotionGraph graph_parse(const std::string& bytes, const std::string& path);

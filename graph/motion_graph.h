@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +53,18 @@ struct EdgeInfo {
 // arguments; edge indices are 32-bit (a graph holds fewer than 2^32 edges: graph_builder checks).
 using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, EdgeInfo, boost::no_property,
                                                         std::size_t, std::uint32_t>;
+
+// The motion of a graph served from its file and loaded with MotionCheck::OnUse (graph/graph_io.h):
+// its frames are checked a block at a time, against the block's checksum in the file and for unit
+// rotations and finite translations, when first used (graph_check_frames), so a reenactment reads
+// only the stretches it plays. Shared by the copies of the graph; the mutex guards `checked`.
+struct MotionBlocks {
+  std::string path;                 // the graph file, for errors
+  int block_frames = 1;             // frames per block (the last may have fewer)
+  std::vector<std::uint64_t> sums;  // each block's checksum: its rotations, then its translations
+  std::mutex mutex;
+  std::vector<std::uint8_t> checked;  // 1 once the block was found sound
+};
 
 struct ClipInfo {
   std::string name;     // for reports: the motion file it came from
@@ -95,6 +108,9 @@ struct MotionGraph {
   Samples<float> beat_cost;
   // The file a loaded graph is served from; null for a graph built in memory.
   std::shared_ptr<const MappedFile> source;
+  // Set for a graph loaded with MotionCheck::OnUse: the motion blocks not yet checked. Null when
+  // every frame is checked (a built graph, one loaded with MotionCheck::OnLoad).
+  std::shared_ptr<MotionBlocks> unchecked_motion;
 
   // Throws gmg::Error "FILE: changed while in use" when the file this graph is served from was
   // truncated or written to since it was loaded (its arrays may then hold zeros or other values):

@@ -111,7 +111,7 @@ class Scheduler {
       // A --graph is loaded (moved into place, not copied) and shared like a built one.
       graph = std::make_shared<const MotionGraph>(setup_.options.graph.empty()
                                                       ? graph_build_from_files({files}, setup_.config, {}, 1, &warnings)
-                                                      : graph_load(setup_.options.graph));
+                                                      : graph_load(setup_.options.graph, MotionCheck::OnUse));
       if (!setup_.options.graph.empty()) check_lock_joints_of_graph(*graph, setup_.config, setup_.options.graph);
     } catch (const std::exception& e) {
       error = e.what();

@@ -45,7 +45,7 @@ void run_reenact(const ReenactArgs& a) {
   std::string graph_name = a.graph;
   std::vector<std::string> warnings;
   if (!a.graph.empty()) {
-    g = graph_load(a.graph);
+    g = graph_load(a.graph, MotionCheck::OnUse);  // the motion is checked where it is played
     const std::string lock_note = check_lock_joints_of_graph(g, cfg, a.graph);
     if (!lock_note.empty()) warnings.push_back(lock_note);
   } else {

@@ -25,6 +25,7 @@
 #include "engine/motion/capture_facts.h"
 #include "engine/motion/cleanup.h"
 #include "engine/motion/motion_file.h"
+#include "graph/graph_io.h"
 #include "graph/reference_facts.h"
 #include "search/segmentation.h"
 
@@ -331,9 +332,28 @@ std::vector<PathPiece> plan_pieces(const Plan& plan) {
   return pieces;
 }
 
+// Checks the frames the assembly reads, for a graph whose motion is checked when used
+// (graph/graph_io.h graph_check_frames; nothing for others): each stretch of consecutive frames
+// of each piece, and kMargin frames either side of it (the assembly samples between a frame and
+// its successor, and a transition continues the old source a step at its warp rate past its last
+// frame). Blocks of 64 frames make the margin cost little.
+void check_played_frames(const MotionGraph& g, const Plan& plan) {
+  constexpr int kMargin = 8;
+  for (const PlannedSegment& s : plan.segments) {
+    const std::vector<int>& p = s.path;
+    for (std::size_t i = 0; i < p.size();) {
+      std::size_t j = i + 1;
+      while (j < p.size() && p[j] == p[j - 1] + 1) ++j;
+      graph_check_frames(g, p[i] - kMargin, p[j - 1] + kMargin);
+      i = j;
+    }
+  }
+}
+
 }  // namespace
 
 Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
+  check_played_frames(g, plan);
   if (params.mode == BlendMode::Inertialize) {
     // The graph's capture facts, so that only the frames played are read; a graph made without
     // them (by hand) has them computed from every frame.

@@ -170,10 +170,12 @@ void graph_seeds(const fs::path& dir) {
   gmg::graph_save(path.string(), tiny_graph());
   const std::string file = gmg::read_file_bytes(path.string());
   fs::remove(path);
-  // The harness's first byte: 0 = a whole file, 1 = a payload it wraps with a valid checksum.
+  // The harness's first byte: 0 = a whole file, 1 = the checksum's extent (u64, the header's last
+  // field) and a payload it wraps with a valid checksum.
   put(dir, "whole.seed", std::string(1, '\0') + file);
-  const std::size_t header = 8 + 4 + 8;
-  put(dir, "payload.seed", std::string(1, '\1') + file.substr(header, file.size() - header - 8));
+  const std::size_t header = 8 + 4 + 8 + 8;
+  put(dir, "payload.seed",
+      std::string(1, '\1') + file.substr(header - 8, 8) + file.substr(header, file.size() - header - 8));
 }
 
 void config_seeds(const fs::path& dir) {

@@ -1,6 +1,7 @@
 // Graph files: save/load round trip, rejection of damaged files, DOT/GraphML export.
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "graph/graph_io.h"
 #include "graph/reference_facts.h"
 #include "graph/stats.h"
+#include "tests/core/helpers.h"
 #include "tests/graph/fixtures.h"
 #include "tests/test_support.h"
 
@@ -140,15 +142,17 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   EXPECT_EQ(a.onset_nodes, b.onset_nodes);
 }
 
-// Format 6 holds the SMPL-X body (shape and per-frame face) as its last section, empty for a graph
-// of BVH references: both load exactly, the payloads agree up to the body, and the face starts on a
-// page boundary like the other large arrays.
-TEST(GraphIo, TheBodyIsTheLastSectionOfVersion6) {
+// The SMPL-X body (shape and per-frame face; format 5 on) is the section before the motion, empty
+// for a graph of BVH references: both load exactly, the payloads agree up to the body, and the face
+// starts on a page boundary like the other large arrays. The motion is the last section (format 7):
+// frames per block and each block's checksum, where the file's checksum stops, then the rotations
+// and the translations, each on a page boundary.
+TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 6);
+  EXPECT_EQ(plain[8], 7);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -159,7 +163,7 @@ TEST(GraphIo, TheBodyIsTheLastSectionOfVersion6) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 6);
+  EXPECT_EQ(bytes[8], 7);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -167,22 +171,60 @@ TEST(GraphIo, TheBodyIsTheLastSectionOfVersion6) {
   EXPECT_EQ(h.body.gender, "female");
   EXPECT_EQ(h.body.model, "smplx2020");
 
-  // After the header (magic, version, payload size: 20 bytes) the two files are the same bytes up
-  // to the body's first field, its u32 face coefficient count (0 without a body, 2 here).
-  std::size_t m = 20;
+  // After the header (magic, version, payload size, the checksum's extent: 28 bytes) the two files
+  // are the same bytes up to the body's first field, its u32 face coefficient count (0 without a
+  // body, 2 here).
+  constexpr std::size_t kHeader = 28;
+  std::size_t m = kHeader;
   while (m < plain.size() && plain[m] == bytes[m]) ++m;
   ASSERT_LT(m + 4, plain.size());
   EXPECT_EQ(plain.compare(m, 4, std::string(4, '\0')), 0);
   EXPECT_EQ(bytes.compare(m, 4, std::string("\x02\0\0\0", 4)), 0);
   // Then the face's u64 value count, zero padding to the next 4096-byte boundary of the file, the
-  // face's doubles there; without a body: no values, then betas (u64 count), gender and model (u32
-  // lengths) and the u64 checksum.
+  // face's doubles there; without a body: no values, then betas (u64 count, doubles), gender and
+  // model (u32 lengths, characters).
   const std::size_t face_at = (m + 4 + 8 + 4095) / 4096 * 4096;
   const std::string face(reinterpret_cast<const char*>(g.body.expressions.data()),
                          g.body.expressions.size() * sizeof(double));
   EXPECT_EQ(bytes.find(face), face_at);
-  EXPECT_EQ(plain.size(), face_at + 8 + 4 + 4 + 8);
-  EXPECT_EQ(bytes.size(), face_at + face.size() + 8 + 3 * sizeof(double) + 4 + 6 + 4 + 9 + 8);
+  const std::size_t frames = static_cast<std::size_t>(g.frame_count()), joints = g.motion.skeleton.joints.size();
+  auto bytes_of = [](const void* p, std::size_t n) { return std::string(static_cast<const char*>(p), n); };
+  auto u64_at = [](const std::string& file, std::size_t at) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, file.data() + at, 8);
+    return v;
+  };
+  // The motion from `at` on: 64 frames a block, the blocks' count and checksums (each that of
+  // its frames' rotations, then their translations), the end of what the file's checksum covers
+  // (the header's last field); then each array's count, padding and values; then the checksum.
+  auto expect_motion_at = [&](const std::string& file, std::size_t at) {
+    ASSERT_LT(at + 12, file.size());
+    EXPECT_EQ(file.compare(at, 4, std::string("\x40\0\0\0", 4)), 0);
+    const std::size_t blocks = (frames + 63) / 64;
+    ASSERT_EQ(u64_at(file, at + 4), blocks);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t first = b * 64, n = std::min<std::size_t>(64, frames - first);
+      Checksum c;
+      c.add(g.motion.rotations.data() + first * joints, n * joints * sizeof(glm::dquat));
+      c.add(g.motion.translations.data() + first * joints, n * joints * sizeof(glm::dvec3));
+      EXPECT_EQ(u64_at(file, at + 12 + 8 * b), c.value()) << b;
+    }
+    const std::size_t summed_end = at + 12 + 8 * blocks;
+    EXPECT_EQ(u64_at(file, 20), summed_end - kHeader);
+    EXPECT_EQ(u64_at(file, file.size() - 8), checksum_of(file.data() + kHeader, summed_end - kHeader));
+    EXPECT_EQ(u64_at(file, summed_end), frames * joints);
+    const std::size_t rotations_at = (summed_end + 8 + 4095) / 4096 * 4096;
+    const std::string rotations = bytes_of(g.motion.rotations.data(), frames * joints * sizeof(glm::dquat));
+    EXPECT_EQ(file.compare(rotations_at, rotations.size(), rotations), 0);
+    const std::size_t count_at = rotations_at + rotations.size();
+    EXPECT_EQ(u64_at(file, count_at), frames * joints);
+    const std::size_t translations_at = (count_at + 8 + 4095) / 4096 * 4096;
+    const std::string translations = bytes_of(g.motion.translations.data(), frames * joints * sizeof(glm::dvec3));
+    EXPECT_EQ(file.compare(translations_at, translations.size(), translations), 0);
+    EXPECT_EQ(file.size(), translations_at + translations.size() + 8);
+  };
+  expect_motion_at(plain, face_at + 8 + 4 + 4);
+  expect_motion_at(bytes, face_at + face.size() + 8 + 3 * sizeof(double) + 4 + 6 + 4 + 9);
 
   // A face that does not cover the frames is refused, even behind a valid checksum.
   MotionGraph bad = g;
@@ -195,6 +237,53 @@ TEST(GraphIo, TheBodyIsTheLastSectionOfVersion6) {
     EXPECT_NE(std::string(e.what()).find("the face disagrees with frames x coefficients"), std::string::npos)
         << e.what();
   }
+}
+
+// MotionCheck::OnUse: the load leaves the motion's values to graph_check_frames, which checks the
+// blocks of 64 frames a range touches, once each, and names the file and the first bad frame. A
+// graph that lacks its reference facts (computed from every frame where used) is checked whole.
+TEST(GraphIo, MotionCheckedOnUseIsCheckedBlockByBlock) {
+  gmg::testing::TempDir dir;
+  const std::string path = dir.file("hand.gmg");
+  MotionGraph g = legged_graph();  // 210 frames: blocks 0-63, 64-127, 128-191, 192-209
+  ASSERT_EQ(g.frame_count(), 210);
+  const std::size_t joints = g.motion.skeleton.joints.size();
+  g.motion.rotations[100 * joints + 1] = glm::dquat(2.0, 0.0, 0.0, 0.0);  // under a valid checksum
+  graph_save(path, g);
+  const std::string bad_frame = "frame 100 holds a value that is not finite or not a unit rotation";
+  const std::string full_error = gmg::testing::error_of([&] { graph_load(path); });
+  EXPECT_NE(full_error.find("hand.gmg: byte "), std::string::npos) << full_error;
+  EXPECT_NE(full_error.find(bad_frame), std::string::npos) << full_error;
+
+  const MotionGraph h = graph_load(path, MotionCheck::OnUse);
+  ASSERT_NE(h.unchecked_motion, nullptr);
+  EXPECT_EQ(h.unchecked_motion->checked, std::vector<std::uint8_t>(4, 0));
+  graph_check_frames(h, -50, 63);  // clamped to the graph: block 0
+  EXPECT_EQ(h.unchecked_motion->checked, std::vector<std::uint8_t>({1, 0, 0, 0}));
+  graph_check_frames(h, 180, 1000);  // blocks 2 and 3
+  EXPECT_EQ(h.unchecked_motion->checked, std::vector<std::uint8_t>({1, 0, 1, 1}));
+  EXPECT_EQ(gmg::testing::error_of([&] { graph_check_frames(h, 120, 130); }),
+            path + ": damaged graph file: " + bad_frame);
+  EXPECT_EQ(gmg::testing::error_of([&] { graph_check_frames(h, 100, 100); }),
+            path + ": damaged graph file: " + bad_frame);
+  EXPECT_EQ(h.unchecked_motion->checked, std::vector<std::uint8_t>({1, 0, 1, 1}));
+  EXPECT_EQ(h.motion.rotations[100 * joints + 1], glm::dquat(2.0, 0.0, 0.0, 0.0));  // read as written
+
+  // A graph built in memory, or loaded whole, has nothing left to check.
+  EXPECT_EQ(g.unchecked_motion, nullptr);
+  graph_check_frames(g, 0, 209);
+  graph_save(dir.file("sound.gmg"), legged_graph());
+  EXPECT_EQ(graph_load(dir.file("sound.gmg")).unchecked_motion, nullptr);
+
+  // Without reference facts the assembly computes them from every frame: the load checks all.
+  MotionGraph bare = g;
+  bare.capture = CaptureFacts{};
+  bare.beat_cost = Samples<float>();
+  graph_save(path, bare);
+  EXPECT_NE(gmg::testing::error_of([&] { graph_load(path, MotionCheck::OnUse); }).find(bad_frame), std::string::npos);
+  bare.motion.rotations[100 * joints + 1] = glm::dquat(1.0, 0.0, 0.0, 0.0);
+  graph_save(path, bare);
+  EXPECT_EQ(graph_load(path, MotionCheck::OnUse).unchecked_motion, nullptr);
 }
 
 TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
@@ -223,11 +312,12 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   version[8] = 9;
   expect_error(version, "version 9");
   // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
-  // facts) are refused before anything else is read, with the advice to rebuild them.
-  for (char old : {3, 4, 5}) {
+  // facts; 6: another checksum) are refused before anything else is read, with the advice to
+  // rebuild them.
+  for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads version 6: rebuild it with 'gmg build'");
+                              ", this gmg reads version 7: rebuild it with 'gmg build'");
   }
 }
 
@@ -385,8 +475,12 @@ TEST(GraphIo, LoadChecksTheReferenceFacts) {
   ASSERT_NE(at, std::string::npos);
   ASSERT_EQ(bytes[at - 1], 1);
   bytes[at - 1] = 2;
-  const std::size_t header = 8 + 4 + 8;
-  const std::uint64_t sum = checksum_of(bytes.data() + header, bytes.size() - header - 8);
+  // The checksum covers as many payload bytes as the header's last field says (the header: magic,
+  // version, payload size, that field).
+  const std::size_t header = 8 + 4 + 8 + 8;
+  std::uint64_t summed = 0;
+  std::memcpy(&summed, bytes.data() + header - 8, 8);
+  const std::uint64_t sum = checksum_of(bytes.data() + header, summed);
   bytes.replace(bytes.size() - 8, 8, reinterpret_cast<const char*>(&sum), 8);
   gmg::testing::write_text(path, bytes);
   try {

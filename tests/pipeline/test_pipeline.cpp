@@ -1,6 +1,7 @@
 // The reenactment pipeline end to end: determinism, reports, bad inputs, real recordings.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -206,6 +207,75 @@ TEST_F(SynthPipeline, LockJointsMissingFromABuiltGraphNameTheJoint) {
             "ref.gmg: lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')");
   cfg.cleanup.lock_joints.clear();
   EXPECT_EQ(check_lock_joints_of_graph(g, cfg, "ref.gmg"), "");
+}
+
+// A graph loaded with MotionCheck::OnUse (as `gmg reenact` and `gmg batch` load one) has the
+// frames its assembly reads checked, and reads no other: a copy of the file whose every other
+// block of motion holds NaN gives the same reenactment byte for byte (any read of them would put
+// NaN in the output), while a full load of that copy, `gmg inspect`, says it is damaged, and
+// damage in a block the reenactment plays stops `gmg reenact` with the frames named.
+TEST_F(SynthPipeline, AReenactmentChecksAndReadsOnlyTheMotionItPlays) {
+  Config cfg;
+  const MotionGraph g = graph_load(file("ref.gmg"), MotionCheck::OnUse);
+  ASSERT_NE(g.unchecked_motion, nullptr);
+  const SpeechEvents ev =
+      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const std::string intact = bvh_format(reenact_events(g, ev, cfg).motion);
+  EXPECT_EQ(intact, bvh_format(reenact_events(graph_load(file("ref.gmg")), ev, cfg).motion));
+  const std::vector<std::uint8_t> checked = g.unchecked_motion->checked;
+  const int per = g.unchecked_motion->block_frames;
+  const auto played = std::count(checked.begin(), checked.end(), std::uint8_t{1});
+  ASSERT_GT(played, 0);
+  ASSERT_LT(played, static_cast<long>(checked.size())) << "the reenactment played every block: no test";
+
+  // The motion's place in the file (graph/graph_io.cpp): after the part the checksum covers (the
+  // header's last field), each array's u64 count, zero padding to a page boundary, its values.
+  std::string bytes = read_file_bytes(file("ref.gmg"));
+  std::uint64_t summed = 0;
+  std::memcpy(&summed, bytes.data() + 20, 8);
+  const std::size_t joints = g.motion.skeleton.joints.size(), frames = static_cast<std::size_t>(g.frame_count());
+  const std::size_t rotations_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t translations_at = (rotations_at + frames * joints * 32 + 8 + 4095) / 4096 * 4096;
+  ASSERT_EQ(bytes.size(), translations_at + frames * joints * 24 + 8);
+  auto poison = [&](std::string& file_bytes, std::size_t block) {
+    const std::size_t first = block * static_cast<std::size_t>(per);
+    const std::size_t n = std::min(static_cast<std::size_t>(per), frames - first);
+    file_bytes.replace(rotations_at + first * joints * 32, n * joints * 32, n * joints * 32, '\xff');
+    file_bytes.replace(translations_at + first * joints * 24, n * joints * 24, n * joints * 24, '\xff');
+  };
+  std::string unplayed = bytes;
+  for (std::size_t b = 0; b < checked.size(); ++b)
+    if (!checked[b]) poison(unplayed, b);
+  write_text(file("unplayed.gmg"), unplayed);
+  EXPECT_EQ(bvh_format(reenact_events(graph_load(file("unplayed.gmg"), MotionCheck::OnUse), ev, cfg).motion), intact);
+  EXPECT_EQ(error_of([&] { graph_load(file("unplayed.gmg")); }),
+            file("unplayed.gmg") + ": graph file is damaged (checksum mismatch)");
+  EXPECT_NE(run_cli({"inspect", file("unplayed.gmg")}), 0);
+  ASSERT_EQ(run_cli({"reenact", "--graph", file("unplayed.gmg"), "--audio", file("test.wav"), "--transcript",
+                     file("test.tsv"), "-o", file("unplayed.bvh")}),
+            0);
+  ASSERT_EQ(run_cli({"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"), "--transcript",
+                     file("test.tsv"), "-o", file("intact.bvh")}),
+            0);
+  EXPECT_EQ(read_file_bytes(file("unplayed.bvh")), read_file_bytes(file("intact.bvh")));
+
+  // Damage in the first block played: the reenactment stops, names the file and the frames, and
+  // writes nothing.
+  const std::size_t first_played =
+      static_cast<std::size_t>(std::find(checked.begin(), checked.end(), std::uint8_t{1}) - checked.begin());
+  std::string played_damaged = bytes;
+  poison(played_damaged, first_played);
+  write_text(file("played.gmg"), played_damaged);
+  const std::string frames_named =
+      std::to_string(first_played * static_cast<std::size_t>(per)) + " to " +
+      std::to_string(std::min(frames, (first_played + 1) * static_cast<std::size_t>(per)) - 1);
+  EXPECT_EQ(error_of([&] { reenact_events(graph_load(file("played.gmg"), MotionCheck::OnUse), ev, cfg); }),
+            file("played.gmg") + ": graph file is damaged (checksum mismatch in frames " + frames_named + ")");
+  const CliRun r = run_gmg({"reenact", "--graph", file("played.gmg"), "--audio", file("test.wav"), "--transcript",
+                            file("test.tsv"), "-o", file("played.bvh")});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("checksum mismatch in frames " + frames_named), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(file("played.bvh")));
 }
 
 TEST(PipelineRealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {
