@@ -619,6 +619,19 @@ void MappedFile::expect_random_reads() const {
   if (data_) ::madvise(const_cast<char*>(data_), size_, MADV_RANDOM);
 }
 
+void advise_huge_pages(const void* p, std::size_t size) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t from = (begin + kHuge - 1) / kHuge * kHuge, to = (begin + size) / kHuge * kHuge;
+  // NOLINTNEXTLINE(performance-no-int-to-ptr): pages of this process's own allocation
+  if (p && to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)size;
+#endif
+}
+
 void MappedFile::release(std::size_t offset, std::size_t size) const {
   if (!data_ || offset >= size_) return;
   const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));

@@ -1,6 +1,7 @@
 // engine/core/files: the one reader and the atomic writer.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -463,6 +465,53 @@ TEST(Files, CreatedFoldersGoWhenTheCommandFails) {
               CreatedFolders f(dir.file("plain/sub"));
             }).rfind(dir.file("plain/sub") + ": cannot create the folder (", 0),
             0u);
+}
+
+// advise_huge_pages: on a kernel that gives transparent huge pages to memory that asks (enabled
+// "madvise" or "always"), the whole 2 MiB pages of an advised region are huge once touched
+// (/proc/self/smaps, AnonHugePages of its mapping); the bytes read back as written, and the parts
+// outside whole 2 MiB pages, and regions too small to hold one, are left as they are.
+TEST(Files, AdvisedMemoryIsBackedByHugePagesWhereTheKernelOffersThem) {
+  std::ifstream setting("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(setting, modes);
+  if (modes.find("[madvise]") == std::string::npos && modes.find("[always]") == std::string::npos)
+    GTEST_SKIP() << "this kernel gives no transparent huge pages on request: '" << modes << "'";
+  advise_huge_pages(nullptr, 0);  // nothing to advise
+  constexpr std::size_t kMiB = std::size_t{1} << 20;
+  const std::size_t size = 9 * kMiB;  // holds at least three whole 2 MiB pages wherever it starts
+  void* region = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(region, MAP_FAILED);
+  auto* bytes = static_cast<unsigned char*>(region) + 4096;  // not on a 2 MiB boundary
+  const std::size_t n = size - 4096;
+  advise_huge_pages(bytes, n);
+  advise_huge_pages(bytes, kMiB);  // under 2 MiB: nothing
+  for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<unsigned char>(i % 251);
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < n; ++i) wrong += bytes[i] != static_cast<unsigned char>(i % 251) ? 1 : 0;
+  EXPECT_EQ(wrong, 0u);
+  // The AnonHugePages lines in smaps of the mappings within the region (the advice splits it).
+  std::ifstream smaps("/proc/self/smaps");
+  const auto start = reinterpret_cast<std::uintptr_t>(region);
+  std::string line;
+  bool inside = false;
+  int mappings = 0;
+  long huge_kb = 0;
+  while (std::getline(smaps, line)) {
+    const std::size_t dash = line.find('-');
+    if (!line.empty() && std::isxdigit(static_cast<unsigned char>(line[0])) && dash != std::string::npos &&
+        dash < line.find(' ')) {
+      const std::uintptr_t from = std::stoull(line.substr(0, dash), nullptr, 16);
+      inside = from >= start && from < start + size;
+      mappings += inside ? 1 : 0;
+    } else if (inside && line.rfind("AnonHugePages:", 0) == 0) {
+      huge_kb += std::stol(line.substr(14));
+    }
+  }
+  ::munmap(region, size);
+  ASSERT_GE(mappings, 1) << "the region's mapping is not in /proc/self/smaps";
+  EXPECT_GE(huge_kb, 3 * 2048) << "no huge pages: the kernel may have had no free 2 MiB page";
+  EXPECT_LE(huge_kb, 4 * 2048);
 }
 
 }  // namespace
