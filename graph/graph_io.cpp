@@ -270,14 +270,12 @@ class Reader {
     summing_ = false;
     return pos_;
   }
-  // The n items of T that follow, passed over without reading them (their values are checked
-  // apart: read_motion_values).
+  // Passes over the n items of T that follow without reading them (the motion's values, checked
+  // by blocks: read_motion).
   template <typename T>
-  const T* skip(std::size_t n) {
+  void skip(std::size_t n) {
     need(n * sizeof(T));
-    const T* p = reinterpret_cast<const T*>(data_ + pos_);
     consume(n * sizeof(T));
-    return p;
   }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(error_at_byte(path_, static_cast<long long>(pos_ + kHeader), "damaged graph file: " + what));
