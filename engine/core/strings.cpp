@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 
 namespace gmg {
 
@@ -91,6 +93,38 @@ std::string format_number(double v) {
     if (std::char_traits<char>::length(buf) <= out.size()) out = buf;
   }
   return out;
+}
+
+char* format_fixed6(double v, char* out) {
+  // v * 1e6 rounded to the nearest integer is the six-decimal text's digits. The product p is
+  // rounded once: for |p| < 2^40 its error is at most 2^-13, so when p lies farther than 2^-12
+  // from a half-integer, the exact product rounds to the same integer as p. Near a tie, or beyond
+  // 1e6 (and for NaN and infinities), the library decides.
+  const double p = v * 1e6;
+  if (!(std::abs(p) < 1e12)) return std::to_chars(out, out + kFixed6Chars, v, std::chars_format::fixed, 6).ptr;
+  const double q = std::nearbyint(p);
+  if (0.5 - std::abs(p - q) <= 0x1p-12) {
+    char* end = std::to_chars(out, out + kFixed6Chars, v, std::chars_format::fixed, 6).ptr;
+    if (std::string_view(out, static_cast<std::size_t>(end - out)) == "-0.000000") {
+      std::memcpy(out, "0.000000", 8);
+      return out + 8;
+    }
+    return end;
+  }
+  auto digits = static_cast<std::int64_t>(q);
+  if (digits < 0) {
+    *out++ = '-';
+    digits = -digits;
+  }
+  const auto whole = static_cast<std::uint64_t>(digits / 1000000);
+  auto fraction = static_cast<std::uint32_t>(digits % 1000000);
+  out = std::to_chars(out, out + 20, whole).ptr;
+  *out++ = '.';
+  for (int i = 5; i >= 0; --i) {
+    out[i] = static_cast<char>('0' + fraction % 10);
+    fraction /= 10;
+  }
+  return out + 6;
 }
 
 std::optional<Utf8Char> decode_utf8(std::string_view s, std::size_t pos) {

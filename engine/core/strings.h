@@ -47,6 +47,14 @@ std::optional<double> parse_number(std::string_view field);
 // human or a config file.
 std::string format_number(double v);
 
+// Writes v as printf's "%.6f" in the C locale would (correctly rounded, ties to even), except that
+// a value that rounds to zero is written "0.000000" whatever its sign; returns the end of the text
+// (not terminated). `out` must hold kFixed6Chars characters. The common values (|v| < 1e6) are
+// formatted from one rounded integer; the rest, and the few within 2^-12 of a rounding tie, by
+// std::to_chars. Writing a motion's values is most of writing a BVH file.
+inline constexpr std::size_t kFixed6Chars = 400;  // the longest finite double in "%.6f" is 317
+char* format_fixed6(double v, char* out);
+
 // One character of UTF-8 text: its code point and how many bytes encode it (1 to 4).
 struct Utf8Char {
   char32_t code_point = 0;

@@ -1,12 +1,11 @@
 // BVH writing: the hierarchy as read, angles chosen per joint to stay continuous.
 #include "engine/motion/bvh.h"
 
-#include <charconv>
 #include <cstdio>
-#include <string_view>
 
 #include "engine/core/files.h"
 #include "engine/core/math.h"
+#include "engine/core/strings.h"
 
 namespace gmg {
 namespace {
@@ -44,11 +43,14 @@ std::string bvh_format(const Motion& m) {
   std::string out = "HIERARCHY\n";
   format_joint(sk, 0, 0, out);
   char buf[64];
-  char num[400];  // the longest finite double in "%.6f" is 317 characters
+  char num[kFixed6Chars];
   out += "MOTION\nFrames: " + std::to_string(m.frame_count) + "\n";
   std::snprintf(buf, sizeof buf, "Frame Time: %.8f\n", 1.0 / m.fps);
   out += buf;
   const int joints = sk.joint_count();
+  std::size_t channels = 0;
+  for (const Joint& joint : sk.joints) channels += joint.channels.size();
+  out.reserve(out.size() + static_cast<std::size_t>(m.frame_count) * (channels * 11 + 1));  // "-12.345678 " typical
   std::vector<glm::dvec3> previous(static_cast<std::size_t>(joints), glm::dvec3(0.0));
   for (int f = 0; f < m.frame_count; ++f) {
     bool first_value = true;
@@ -64,15 +66,12 @@ std::string bvh_format(const Motion& m) {
       int rot_index = 0;
       for (Channel c : joint.channels) {
         const double v = is_position_channel(c) ? t[channel_axis(c)] : angles[rot_index++] / kDegToRad;
-        // std::to_chars is printf's "%.6f" (the standard defines it so) without its locale and
-        // its arbitrary-precision digits: writing the values was a third of a short reenactment.
+        // printf's "%.6f" without its locale and its arbitrary-precision digits (writing the values
+        // was a third of a short reenactment). A value that rounds to zero is written 0.000000
+        // whatever its sign (-1e-9 and 1e-9 are one value in the file), so a motion that comes
+        // back through another format keeps its bytes.
         if (!first_value) out += ' ';
-        const std::to_chars_result r = std::to_chars(num, num + sizeof num, v, std::chars_format::fixed, 6);
-        // A value that rounds to zero is written 0.000000 whatever its sign (-1e-9 and 1e-9 are
-        // one value in the file), so a motion that comes back through another format keeps its
-        // bytes.
-        const std::string_view text(num, static_cast<std::size_t>(r.ptr - num));
-        out += text == "-0.000000" ? std::string_view("0.000000") : text;
+        out.append(num, format_fixed6(v, num));
         first_value = false;
       }
     }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -136,6 +137,66 @@ TEST(Strings, FormatNumberRoundTrips) {
       EXPECT_NE(std::strtod(shorter, nullptr), v) << text << " vs " << shorter;
     }
   }
+}
+
+// format_fixed6 against the C library's printf (glibc rounds the exact binary value, ties to even).
+std::string printf_fixed6(double v) {
+  char buf[kFixed6Chars];
+  std::snprintf(buf, sizeof buf, "%.6f", v);
+  const std::string text = buf;
+  return text == "-0.000000" ? "0.000000" : text;
+}
+
+std::string fixed6(double v) {
+  char buf[kFixed6Chars];
+  return std::string(buf, format_fixed6(v, buf));
+}
+
+TEST(Strings, FormatFixed6IsPrintfs) {
+  EXPECT_EQ(fixed6(0.0), "0.000000");
+  EXPECT_EQ(fixed6(-0.0), "0.000000");
+  EXPECT_EQ(fixed6(-4e-7), "0.000000");   // rounds to zero: no sign
+  EXPECT_EQ(fixed6(-6e-7), "-0.000001");
+  EXPECT_EQ(fixed6(1.5), "1.500000");
+  EXPECT_EQ(fixed6(-123.4567894), "-123.456789");
+  EXPECT_EQ(fixed6(999999.9999996), "1000000.000000");
+  // Exact ties: k/128 for odd k is a half-integer number of millionths; printf rounds to even.
+  EXPECT_EQ(fixed6(1.0 / 128), "0.007812");   // 7812.5 millionths
+  EXPECT_EQ(fixed6(3.0 / 128), "0.023438");   // 23437.5
+  EXPECT_EQ(fixed6(-5.0 / 128), "-0.039062");  // -39062.5
+  EXPECT_EQ(fixed6(1e300).substr(0, 4), "1000");
+  EXPECT_EQ(fixed6(1e300).size(), 301u + 7u);
+  EXPECT_EQ(fixed6(std::numeric_limits<double>::infinity()), "inf");
+
+  std::vector<double> values;
+  for (int k = -4000; k <= 4000; ++k) values.push_back(k / 128.0);  // every tie of 1/128 steps and its neighbours
+  for (int k = -1000; k <= 1000; ++k) {
+    const double half = (k + 0.5) / 1e6;  // the nearest doubles to a tie in decimal
+    values.push_back(half);
+    values.push_back(std::nextafter(half, 1e9));
+    values.push_back(std::nextafter(half, -1e9));
+  }
+  std::uint64_t state = 12345;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return state;
+  };
+  for (int i = 0; i < 200000; ++i) {  // magnitudes from 1e-9 to 1e8, both signs, and random bit patterns
+    const double unit = static_cast<double>(next() >> 11) * 0x1p-53;
+    const double magnitude = std::pow(10.0, -9.0 + 17.0 * static_cast<double>(next() >> 11) * 0x1p-53);
+    values.push_back((next() & 1 ? -1.0 : 1.0) * unit * magnitude);
+    const std::uint64_t bits = next();
+    double any = 0;
+    std::memcpy(&any, &bits, sizeof any);
+    if (std::isfinite(any)) values.push_back(any);
+  }
+  for (double boundary : {1e6, 1e12 / 1e6, 999999.9999995, 1e-6, 5e-7, 4.9999999999999e-7})
+    for (double v : {boundary, -boundary, std::nextafter(boundary, 0.0), std::nextafter(boundary, 2e6)})
+      values.push_back(v);
+  std::size_t differing = 0;
+  for (double v : values)
+    if (fixed6(v) != printf_fixed6(v) && ++differing <= 5) ADD_FAILURE() << v << ": " << fixed6(v) << " vs " << printf_fixed6(v);
+  EXPECT_EQ(differing, 0u) << "of " << values.size();
 }
 
 TEST(Strings, ToValidUtf8) {
