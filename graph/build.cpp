@@ -189,13 +189,13 @@ MotionGraph GraphBuild::finish(const BuildProgress& progress) {
   // Natural edges inside continuous runs, then the analysis's.
   GraphBuilder builder(std::move(s.nodes));
   for (int f = 0; f + 1 < s.frames; ++f)
-    if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0, true});
+    if (!(builder.node(f).kinds & kBreakNode)) builder.add_edge(f, f + 1, EdgeInfo{0.0});
   s.store->finish();
   s.space->finish();
   ContinuityProgress analysed;
   if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };
   const std::vector<Transition> transitions = continuity_analysis(std::move(*s.space), s.theta, s.params, analysed);
-  for (const Transition& t : transitions) builder.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+  for (const Transition& t : transitions) builder.add_edge(t.from, t.to, EdgeInfo{t.weight});
   g.graph = builder.finish();
   add_reference_facts(g);
   return g;

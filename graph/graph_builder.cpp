@@ -14,6 +14,9 @@ void GraphBuilder::add_edge(int from, int to, const EdgeInfo& info) {
   if (from < 0 || to < 0 || from >= n || to >= n)
     throw Error("graph builder: edge " + std::to_string(from) + " -> " + std::to_string(to) + " outside the " +
                 std::to_string(n) + " frames");
+  if (is_natural_edge(static_cast<std::size_t>(from), static_cast<std::size_t>(to)) && info.weight != 0.0)
+    throw Error("graph builder: edge " + std::to_string(from) + " -> " + std::to_string(to) +
+                " steps to the next frame, which only the natural edge of weight 0 does");
   from_.push_back(static_cast<std::uint32_t>(from));
   to_.push_back(static_cast<std::uint32_t>(to));
   info_.push_back(info);
@@ -28,7 +31,7 @@ GraphStorage GraphBuilder::finish() {
   for (const std::uint32_t f : from_) ++rowstart[f + 1];
   for (std::size_t f = 0; f < n; ++f) rowstart[f + 1] += rowstart[f];
   std::vector<std::uint32_t> next(rowstart.begin(), rowstart.end() - 1);
-  std::vector<std::size_t> targets(e);
+  std::vector<GraphVertex> targets(e);
   std::vector<EdgeInfo> edges(e);
   for (std::size_t i = 0; i < e; ++i) {
     const std::uint32_t slot = next[from_[i]]++;
@@ -42,14 +45,14 @@ GraphStorage GraphBuilder::finish() {
 }
 
 GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<std::size_t> targets, std::vector<EdgeInfo> edges) {
+                                       std::vector<GraphVertex> targets, std::vector<EdgeInfo> edges) {
   const std::size_t n = nodes.size();
   if (rowstart.size() != n + 1 || targets.size() != edges.size() || rowstart.front() != 0 ||
       rowstart.back() != targets.size())
     throw Error("graph storage: row starts, targets and edges disagree");
   for (std::size_t f = 0; f < n; ++f)
     if (rowstart[f] > rowstart[f + 1]) throw Error("graph storage: row starts are not ascending");
-  for (const std::size_t t : targets)
+  for (const GraphVertex t : targets)
     if (t >= n) throw Error("graph storage: an edge target is outside the graph");
   // compressed_sparse_row_graph keeps its arrays in public members (Boost documents them as
   // "should be private"): moving into them is the one way to build it without a copy.

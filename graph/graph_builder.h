@@ -21,7 +21,8 @@ class GraphBuilder {
   NodeInfo& node(int frame) { return nodes_.at(static_cast<std::size_t>(frame)); }
   std::vector<NodeInfo>& nodes() { return nodes_; }
 
-  // Throws gmg::Error when an end is outside [0, frames).
+  // Throws gmg::Error when an end is outside [0, frames), or for a step to the next frame (the
+  // natural edge, is_natural_edge) whose weight is not 0.
   void add_edge(int from, int to, const EdgeInfo& info);
 
   // The storage (a stable counting sort by source); the builder is left empty.
@@ -38,6 +39,6 @@ class GraphBuilder {
 // gmg::Error when they disagree (sizes, rowstart not ascending from 0 to the edge count, a
 // target outside the graph).
 GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<std::size_t> targets, std::vector<EdgeInfo> edges);
+                                       std::vector<GraphVertex> targets, std::vector<EdgeInfo> edges);
 
 }  // namespace gmg

@@ -19,7 +19,7 @@ GraphStorage subgraph(const MotionGraph& g, int from, int to) {
   GraphBuilder sub(to - from);
   for (int f = from; f < to; ++f) {
     sub.node(f - from) = g.node(f);
-    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g.graph); it != end; ++it) {
+    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it) {
       const int b = static_cast<int>(boost::target(*it, g.graph));
       if (b >= from && b < to) sub.add_edge(f - from, b - from, g.graph[*it]);
     }
@@ -57,7 +57,7 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
           os << "]";
         },
         [&](std::ostream& os, const GraphStorage::edge_descriptor& e) {
-          if (sub[e].natural)
+          if (is_natural_edge(boost::source(e, sub), boost::target(e, sub)))
             os << "[color=gray]";
           else
             os << "[color=orange, label=\"" << sub[e].weight << "\"]";
@@ -73,12 +73,15 @@ void graph_write_graphml(const std::string& path, const MotionGraph& g, int from
     frame[v] = from + static_cast<int>(v);
     kinds[v] = kind_names(sub[v].kinds);
   }
+  std::vector<bool> natural;  // in edge order (boost::edges of a compressed sparse row graph)
+  for (auto [it, end] = boost::edges(sub); it != end; ++it)
+    natural.push_back(is_natural_edge(boost::source(*it, sub), boost::target(*it, sub)));
   boost::dynamic_properties dp;
   dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("keyword", boost::get(&NodeInfo::keyword, sub));
   dp.property("weight", boost::get(&EdgeInfo::weight, sub));
-  dp.property("natural", boost::get(&EdgeInfo::natural, sub));
+  dp.property("natural", boost::make_iterator_property_map(natural.begin(), boost::get(boost::edge_index, sub)));
   write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
 }
 

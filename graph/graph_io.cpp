@@ -485,7 +485,13 @@ void write_payload(Writer& w, const MotionGraph& g) {
   const std::size_t e = csr.m_column.size();
   w.vec_of<std::uint32_t>(e, [&](std::size_t i) { return static_cast<std::uint32_t>(csr.m_column[i]); });
   w.vec_of<double>(e, [&](std::size_t i) { return csr.m_edge_properties[i].weight; });
-  w.vec_of<std::uint8_t>(e, [&](std::size_t i) { return std::uint8_t{csr.m_edge_properties[i].natural}; });
+  // Each edge's natural flag (is_natural_edge: derived, kept in the file so that a reader need not
+  // know the rule).
+  std::vector<std::uint8_t> natural(e);
+  for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
+    for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i)
+      natural[i] = is_natural_edge(f, csr.m_column[i]) ? 1 : 0;
+  w.vec(natural);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
@@ -632,12 +638,13 @@ std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames, MotionGraph& g) 
 }
 
 // The edges, and the mean weight of the unnatural ones (MotionGraph::transition_weight, summed in
-// edge order as mean_transition_weight does).
+// edge order as mean_transition_weight does). Each edge's natural flag must be is_natural_edge's:
+// a natural edge steps to the next frame with weight 0, a transition never steps to the next frame.
 GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes, double& transition_weight) {
   std::vector<std::uint32_t> rowstart = huge_vector<std::uint32_t>(r.count<std::uint32_t>());
   r.items<std::uint32_t>(rowstart.size(), [&](std::size_t i, std::uint32_t s) { rowstart[i] = s; });
   const std::size_t e = r.count<std::uint32_t>();
-  std::vector<std::size_t> targets = huge_vector<std::size_t>(e);
+  std::vector<GraphVertex> targets = huge_vector<GraphVertex>(e);
   r.items<std::uint32_t>(e, [&](std::size_t i, std::uint32_t t) { targets[i] = t; });
   std::vector<EdgeInfo> edges = huge_vector<EdgeInfo>(e);
   if (r.count<double>() != e) r.fail("edge weights disagree with the edge count");
@@ -647,22 +654,32 @@ GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes, double& transiti
     invalid = invalid || !std::isfinite(w) || w < 0;
   });
   if (invalid) r.fail("an edge weight is negative or not finite");
+  GraphStorage g;
+  try {
+    g = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets), std::move(edges));
+  } catch (const Error& err) {
+    r.fail(err.what());
+  }
   if (r.count<std::uint8_t>() != e) r.fail("edge flags disagree with the edge count");
+  const auto& csr = g.m_forward;
   double sum = 0.0;
   long transitions = 0;
-  r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t natural) {
-    edges[i].natural = natural != 0;
-    if (!edges[i].natural) {
-      sum += edges[i].weight;
+  std::size_t source = 0;
+  r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t flag) {
+    while (i >= csr.m_rowstart[source + 1]) ++source;  // rows are ascending (checked above)
+    const bool natural = is_natural_edge(source, csr.m_column[i]);
+    const double weight = csr.m_edge_properties[i].weight;
+    if (natural != (flag != 0) || (natural && weight != 0))
+      r.fail(natural ? "an edge from frame " + std::to_string(source) +
+                           " to the next frame is not its natural edge of weight 0"
+                     : "a natural edge from frame " + std::to_string(source) + " is not a step to the next frame");
+    if (!natural) {
+      sum += weight;
       ++transitions;
     }
   });
   transition_weight = transitions > 0 ? sum / static_cast<double>(transitions) : 0.0;
-  try {
-    return graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets), std::move(edges));
-  } catch (const Error& err) {
-    r.fail(err.what());
-  }
+  return g;
 }
 
 // The clip table: contiguous clips (summed in 64 bits, so counts near 2^31 cannot wrap); the
@@ -790,17 +807,6 @@ void read_motion(Reader& r, MotionGraph& g, const std::string& path, MotionCheck
     r.fail("frame " + std::to_string(c.bad_frame) + " holds a value that is not finite or not a unit rotation");
 }
 
-// Natural edges are the capture's own frame steps: to the next frame, with weight 0.
-void check_natural_edges(Reader& r, const GraphStorage& g) {
-  const auto& csr = g.m_forward;
-  for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
-    for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i) {
-      const EdgeInfo& e = csr.m_edge_properties[i];
-      if (e.natural && (csr.m_column[i] != f + 1 || e.weight != 0))
-        r.fail("a natural edge from frame " + std::to_string(f) + " is not a step to the next frame of weight 0");
-    }
-}
-
 template <typename SummedTo, typename Damaged>
 MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, MotionCheck mode,
                          const SummedTo& summed_to, const Damaged& damaged) {
@@ -812,7 +818,6 @@ MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, 
   read_motion_header(r, g.motion);
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g.transition_weight);
-  check_natural_edges(r, g.graph);
   read_speech(r, src, g);
   read_key_poses(r, src, g);
   read_reference_facts(r, src, g);

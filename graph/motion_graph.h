@@ -3,7 +3,7 @@
 //
 // Stored as a Boost.Graph compressed_sparse_row_graph: vertex descriptor == global frame index,
 // one array of targets and one of edge properties in source order, so a graph is a few flat
-// arrays (24 bytes an edge), moves without copying and loads at memory speed. It is immutable:
+// arrays (12 bytes an edge), moves without copying and loads at memory speed. It is immutable:
 // graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
 // they were added in: the natural edge first, then transitions by ascending target. With
 // max_transitions (graph/params.h) edges grow linearly with frames.
@@ -45,14 +45,20 @@ struct NodeInfo {
 };
 
 struct EdgeInfo {
-  double weight = 0.0;   // 0 for natural edges, the pose distance d(l, r) for unnatural ones
-  bool natural = false;  // true for i -> i+1 inside a continuous run
+  double weight = 0.0;  // 0 for natural edges, the pose distance d(l, r) for unnatural ones
 };
 
-// Vertices are std::size_t so that boost::out_edges(std::size_t, g) deduces its template
-// arguments; edge indices are 32-bit (a graph holds fewer than 2^32 edges: graph_builder checks).
+// An edge is natural (i -> i+1 inside a continuous run) exactly when it steps to the next frame:
+// a transition never does (graph/neighbours.h: r != l + 1; graph_builder and the loader refuse
+// one), so the storage holds no flag for it.
+inline bool is_natural_edge(std::size_t from, std::size_t to) { return to == from + 1; }
+
+// Vertices and edge indices are 32-bit (a graph holds fewer than 2^31 frames, limits.h, and fewer
+// than 2^32 edges, graph_builder checks): 12 bytes an edge. boost::out_edges takes a
+// GraphVertex (it does not convert a std::size_t or an int).
+using GraphVertex = std::uint32_t;
 using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, EdgeInfo, boost::no_property,
-                                                        std::size_t, std::uint32_t>;
+                                                        GraphVertex, std::uint32_t>;
 
 // The motion of a graph served from its file and loaded with MotionCheck::OnUse (graph/graph_io.h):
 // its frames are checked a block at a time, against the block's checksum in the file and for unit

@@ -8,7 +8,7 @@ double mean_transition_weight(const GraphStorage& graph) {
   double sum = 0.0;
   long count = 0;
   for (auto [it, end] = boost::edges(graph); it != end; ++it)
-    if (!graph[*it].natural) {
+    if (!is_natural_edge(boost::source(*it, graph), boost::target(*it, graph))) {
       sum += graph[*it].weight;
       ++count;
     }

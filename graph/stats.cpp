@@ -10,7 +10,7 @@ GraphStats graph_stats(const MotionGraph& g) {
   s.clips = static_cast<int>(g.clips.size());
   std::vector<char> has_transition(static_cast<std::size_t>(s.frames), 0);
   for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
-    if (g.graph[*it].natural) {
+    if (is_natural_edge(boost::source(*it, g.graph), boost::target(*it, g.graph))) {
       ++s.natural_edges;
     } else {
       ++s.unnatural_edges;

@@ -110,9 +110,9 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         continue;
       }
       const int frame = tree[static_cast<std::size_t>(e.tree)].frame;
-      for (auto [out, end] = boost::out_edges(static_cast<std::size_t>(frame), g.graph); out != end; ++out) {
+      for (auto [out, end] = boost::out_edges(static_cast<GraphVertex>(frame), g.graph); out != end; ++out) {
         const int child = static_cast<int>(boost::target(*out, g.graph));
-        const bool natural = g.graph[*out].natural;
+        const bool natural = is_natural_edge(static_cast<std::size_t>(frame), static_cast<std::size_t>(child));
         // No transition before the path has dwelt min_run frames, and none back into the stretch
         // it is playing (a loop that replays what was just shown).
         if (!natural && request.min_run > 0 &&

@@ -82,7 +82,7 @@ class Planner {
 
   std::vector<int> successors(int frame) const {
     std::vector<int> out;
-    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(frame), g_.graph); it != end; ++it)
+    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(frame), g_.graph); it != end; ++it)
       out.push_back(static_cast<int>(boost::target(*it, g_.graph)));
     return out;
   }

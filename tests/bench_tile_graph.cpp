@@ -55,7 +55,7 @@ gmg::MotionGraph tile(const gmg::MotionGraph& g, int copies) {
   const auto& csr = g.graph.m_forward;
   std::vector<NodeInfo> nodes;
   std::vector<std::uint32_t> rowstart;
-  std::vector<std::size_t> targets;
+  std::vector<GraphVertex> targets;
   std::vector<EdgeInfo> edges;
   const std::size_t e = csr.m_column.size();
   for (int c = 0; c < copies; ++c) {
@@ -64,7 +64,7 @@ gmg::MotionGraph tile(const gmg::MotionGraph& g, int copies) {
       rowstart.push_back(static_cast<std::uint32_t>(csr.m_rowstart[f] + c * e));
     }
     for (std::size_t i = 0; i < e; ++i) {
-      targets.push_back(csr.m_column[i] + static_cast<std::size_t>(c) * n);
+      targets.push_back(static_cast<GraphVertex>(csr.m_column[i] + static_cast<std::size_t>(c) * n));
       edges.push_back(csr.m_edge_properties[i]);
     }
   }

@@ -217,7 +217,7 @@ MotionGraph tiny_graph() {
   g.motion = motion_rest(sk, 30.0, 8);
   g.clips = {{"tiny.bvh", 0, 8}};
   GraphBuilder b(8);
-  for (int f = 0; f + 1 < 8; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0, true});
+  for (int f = 0; f + 1 < 8; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0});
   b.node(7).kinds = kBreakNode;
   g.graph = b.finish();
   return g;

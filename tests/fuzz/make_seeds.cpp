@@ -152,8 +152,8 @@ gmg::MotionGraph tiny_graph() {
   g.clips = {{"a.bvh", 0, 6}, {"b.bvh", 6, 4}};
   gmg::GraphBuilder b(10);
   for (int f = 0; f + 1 < 10; ++f)
-    if (f != 5) b.add_edge(f, f + 1, gmg::EdgeInfo{0.0, true});
-  b.add_edge(2, 8, gmg::EdgeInfo{0.25, false});
+    if (f != 5) b.add_edge(f, f + 1, gmg::EdgeInfo{0.0});
+  b.add_edge(2, 8, gmg::EdgeInfo{0.25});
   b.node(1).kinds = gmg::kOnsetNode;
   b.node(3).kinds = gmg::kKeywordNode;
   b.node(3).keyword = "big";

@@ -115,8 +115,8 @@ inline GraphStorage with_edge(const GraphStorage& g, int from, int to, const Edg
   const int n = static_cast<int>(boost::num_vertices(g));
   GraphBuilder b(n);
   for (int f = 0; f < n; ++f) {
-    b.node(f) = g[static_cast<std::size_t>(f)];
-    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<std::size_t>(f), g)))
+    b.node(f) = g[static_cast<GraphVertex>(f)];
+    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<GraphVertex>(f), g)))
       b.add_edge(f, static_cast<int>(boost::target(e, g)), g[e]);
     if (f == from) b.add_edge(from, to, extra);
   }

@@ -9,7 +9,7 @@ namespace {
 
 std::vector<std::pair<int, double>> out_of(const GraphStorage& g, int f) {
   std::vector<std::pair<int, double>> out;
-  for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g); it != end; ++it)
+  for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g); it != end; ++it)
     out.emplace_back(static_cast<int>(boost::target(*it, g)), g[*it].weight);
   return out;
 }
@@ -18,11 +18,11 @@ TEST(GraphBuilder, OutEdgesKeepTheOrderTheyWereAddedIn) {
   GraphBuilder b(4);
   b.node(2).kinds = kKeywordNode;
   b.node(2).keyword = "big";
-  b.add_edge(1, 3, {0.5, false});
-  b.add_edge(0, 1, {0.0, true});
-  b.add_edge(1, 2, {0.0, true});
-  b.add_edge(1, 0, {0.25, false});
-  b.add_edge(3, 0, {0.75, false});
+  b.add_edge(1, 3, {0.5});
+  b.add_edge(0, 1, {0.0});
+  b.add_edge(1, 2, {0.0});
+  b.add_edge(1, 0, {0.25});
+  b.add_edge(3, 0, {0.75});
   const GraphStorage g = b.finish();
   EXPECT_EQ(boost::num_vertices(g), 4u);
   EXPECT_EQ(boost::num_edges(g), 5u);
@@ -41,11 +41,27 @@ TEST(GraphBuilder, EdgesOutsideTheGraphAreRejected) {
   EXPECT_THROW(b.add_edge(-1, 0, {}), Error);
 }
 
+// A step to the next frame is the natural edge (is_natural_edge): weight 0, never a transition.
+TEST(GraphBuilder, AStepToTheNextFrameIsTheNaturalEdgeOfWeightZero) {
+  GraphBuilder b(4);
+  EXPECT_THROW(b.add_edge(1, 2, EdgeInfo{0.5}), Error);
+  b.add_edge(1, 2, EdgeInfo{0.0});
+  b.add_edge(2, 1, EdgeInfo{0.5});  // a step back is a transition
+  b.add_edge(0, 2, EdgeInfo{0.25});
+  const GraphStorage g = b.finish();
+  EXPECT_EQ(out_of(g, 1), (std::vector<std::pair<int, double>>{{2, 0.0}}));
+  EXPECT_EQ(out_of(g, 2), (std::vector<std::pair<int, double>>{{1, 0.5}}));
+  EXPECT_TRUE(is_natural_edge(1, 2));
+  EXPECT_FALSE(is_natural_edge(2, 1));
+  EXPECT_FALSE(is_natural_edge(0, 2));
+  EXPECT_FALSE(is_natural_edge(3, 3));
+}
+
 TEST(GraphBuilder, ArraysInCsrOrderAreMovedInAndChecked) {
-  std::vector<std::size_t> targets = {1, 2, 0};
-  const std::size_t* data = targets.data();
+  std::vector<GraphVertex> targets = {1, 2, 0};
+  const GraphVertex* data = targets.data();
   const GraphStorage g = graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 3}, std::move(targets),
-                                                   {{0.0, true}, {1.5, false}, {2.5, false}});
+                                                   {{0.0}, {1.5}, {2.5}});
   EXPECT_EQ(g.m_forward.m_column.data(), data) << "the targets array is moved, not copied";
   EXPECT_EQ(out_of(g, 0), (std::vector<std::pair<int, double>>{{1, 0.0}, {2, 1.5}}));
   EXPECT_EQ(out_of(g, 2), (std::vector<std::pair<int, double>>{{0, 2.5}}));

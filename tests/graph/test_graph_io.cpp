@@ -55,7 +55,7 @@ MotionGraph long_graph() {
 // activity are read in place from the file).
 std::size_t copied_bytes(const MotionGraph& g) {
   return g.graph.m_forward.m_rowstart.size() * sizeof(std::uint32_t) +
-         g.graph.m_forward.m_column.size() * sizeof(std::size_t) +
+         g.graph.m_forward.m_column.size() * sizeof(GraphVertex) +
          g.graph.m_forward.m_edge_properties.size() * sizeof(EdgeInfo) +
          g.graph.m_vertex_properties.size() * sizeof(NodeInfo);
 }
@@ -129,11 +129,11 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   for (int f = 0; f < g.frame_count(); ++f) {
     EXPECT_EQ(h.node(f).kinds, g.node(f).kinds);
     EXPECT_EQ(h.node(f).keyword, g.node(f).keyword);
-    std::vector<std::tuple<std::size_t, double, bool>> a, b;
-    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), g.graph); it != end; ++it)
-      a.emplace_back(boost::target(*it, g.graph), g.graph[*it].weight, g.graph[*it].natural);
-    for (auto [it, end] = boost::out_edges(static_cast<std::size_t>(f), h.graph); it != end; ++it)
-      b.emplace_back(boost::target(*it, h.graph), h.graph[*it].weight, h.graph[*it].natural);
+    std::vector<std::tuple<std::size_t, double>> a, b;
+    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it)
+      a.emplace_back(boost::target(*it, g.graph), g.graph[*it].weight);
+    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), h.graph); it != end; ++it)
+      b.emplace_back(boost::target(*it, h.graph), h.graph[*it].weight);
     EXPECT_EQ(a, b) << "frame " << f;
   }
   EXPECT_EQ(h.params.max_transitions, g.params.max_transitions);
@@ -369,13 +369,16 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
                  [](MotionGraph& g) { g.graph[5].keyword = "stray"; });
   expect_refused("a node has unknown kinds", [](MotionGraph& g) { g.graph[5].kinds |= 0x80; });
   expect_refused("an edge weight is negative or not finite", [](MotionGraph& g) {
-    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{-1.0, false});
+    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{-1.0});
   });
   expect_refused("an edge weight is negative or not finite", [](MotionGraph& g) {
-    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{std::numeric_limits<double>::quiet_NaN(), false});
+    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{std::numeric_limits<double>::quiet_NaN()});
   });
-  expect_refused("is not a step to the next frame of weight 0", [](MotionGraph& g) {
-    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{0.0, true});
+  // A step to the next frame is the natural edge: its weight is 0 (the builder refuses another;
+  // the storage's arrays are written to directly).
+  expect_refused("an edge from frame 3 to the next frame is not its natural edge of weight 0", [](MotionGraph& g) {
+    ASSERT_EQ(boost::target(*boost::out_edges(GraphVertex{3}, g.graph).first, g.graph), 4u);
+    g.graph.m_forward.m_edge_properties[g.graph.m_forward.m_rowstart[3]].weight = 0.5;
   });
   expect_refused("unknown or repeated channel", [](MotionGraph& g) {
     g.motion.skeleton.joints[1].channels.push_back(g.motion.skeleton.joints[1].channels.back());
@@ -387,6 +390,55 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
 // Format 6 keeps the reference facts (graph/reference_facts.h): they load exactly, the per-frame
 // arrays in place from the file, and the index and transition scale the load takes from the nodes
 // and edges equal those of the build, bit for bit.
+// The file keeps each edge's natural flag after the weights (u64 count, one byte an edge): 1
+// exactly for the steps to the next frame. A file whose flags say otherwise is refused even
+// behind a valid checksum: a flag on a transition, or none on a step.
+TEST(GraphIo, TheNaturalFlagsAreTheStepsToTheNextFrame) {
+  const MotionGraph g = two_clip_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("g.gmg"), g);
+  const std::string bytes = read_file_bytes(dir.file("g.gmg"));
+  const auto& csr = g.graph.m_forward;
+  const std::size_t e = csr.m_column.size();
+  std::string weights, flags;
+  std::size_t transition = e, step = e;  // an edge of each kind
+  for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
+    for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i) {
+      weights.append(reinterpret_cast<const char*>(&csr.m_edge_properties[i].weight), sizeof(double));
+      const bool natural = csr.m_column[i] == f + 1;
+      flags += natural ? '\1' : '\0';
+      (natural ? step : transition) = i;
+    }
+  ASSERT_LT(transition, e);
+  ASSERT_LT(step, e);
+  const std::size_t at = bytes.find(weights);
+  ASSERT_NE(at, std::string::npos);
+  const std::uint64_t count = e;
+  ASSERT_EQ(bytes.compare(at + weights.size(), 8, std::string(reinterpret_cast<const char*>(&count), 8)), 0);
+  const std::size_t flags_at = at + weights.size() + 8;
+  ASSERT_EQ(bytes.compare(flags_at, e, flags), 0);
+
+  // The same file with one flag changed and the checksum made right again.
+  auto load_with_flag = [&](std::size_t edge, char flag) {
+    std::string hand = bytes;
+    hand[flags_at + edge] = flag;
+    std::uint64_t summed = 0;
+    std::memcpy(&summed, hand.data() + 20, 8);
+    const std::uint64_t sum = checksum_of(hand.data() + 28, summed);
+    std::memcpy(hand.data() + hand.size() - 8, &sum, 8);
+    gmg::testing::write_text(dir.file("hand.gmg"), hand);
+    try {
+      graph_load(dir.file("hand.gmg"));
+    } catch (const Error& err) {
+      return std::string(err.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(load_with_flag(step, '\1'), "accepted");  // the control: the flag it had
+  EXPECT_NE(load_with_flag(transition, '\1').find("is not a step to the next frame"), std::string::npos);
+  EXPECT_NE(load_with_flag(step, '\0').find("to the next frame is not its natural edge"), std::string::npos);
+}
+
 TEST(GraphIo, TheReferenceFactsRoundTrip) {
   const MotionGraph g = legged_graph();
   gmg::testing::TempDir dir;

@@ -36,8 +36,8 @@ MotionGraph posed_graph(const std::vector<double>& angle, const std::vector<int>
   for (int f : onsets) b.node(f).kinds |= kOnsetNode;
   for (int f : breaks) b.node(f).kinds |= kBreakNode;
   for (int f = 0; f + 1 < n; ++f)
-    if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0, true});
-  for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight, false});
+    if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0});
+  for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight});
   g.graph = b.finish();
   return g;
 }
