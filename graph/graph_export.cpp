@@ -68,10 +68,11 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
 void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
   GraphStorage sub = subgraph(g, from, to);
   std::vector<int> frame(boost::num_vertices(sub));
-  std::vector<std::string> kinds(boost::num_vertices(sub));
+  std::vector<std::string> kinds(boost::num_vertices(sub)), keyword(boost::num_vertices(sub));
   for (std::size_t v = 0; v < frame.size(); ++v) {
     frame[v] = from + static_cast<int>(v);
     kinds[v] = kind_names(sub[v].kinds);
+    keyword[v] = sub[v].keyword.str();
   }
   std::vector<bool> natural;  // in edge order (boost::edges of a compressed sparse row graph)
   for (auto [it, end] = boost::edges(sub); it != end; ++it)
@@ -79,7 +80,7 @@ void graph_write_graphml(const std::string& path, const MotionGraph& g, int from
   boost::dynamic_properties dp;
   dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
-  dp.property("keyword", boost::get(&NodeInfo::keyword, sub));
+  dp.property("keyword", boost::make_iterator_property_map(keyword.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("weight", boost::get(&EdgeInfo::weight, sub));
   dp.property("natural", boost::make_iterator_property_map(natural.begin(), boost::get(boost::edge_index, sub)));
   write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });

@@ -477,7 +477,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   for (std::size_t f = 0; f < n; ++f)
     if (!g.graph[f].keyword.empty()) {
       w.pod<std::uint32_t>(static_cast<std::uint32_t>(f));
-      w.str(g.graph[f].keyword);
+      w.str(g.graph[f].keyword.str());
     }
 
   const auto& csr = g.graph.m_forward;

@@ -29,6 +29,7 @@
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
+#include "graph/keyword_label.h"
 #include "graph/params.h"
 
 namespace gmg {
@@ -41,7 +42,7 @@ enum NodeKind : std::uint8_t {
 
 struct NodeInfo {
   std::uint8_t kinds = 0;  // NodeKind bits; 0 = regular node
-  std::string keyword;     // the keyword label; non-empty exactly when kinds has kKeywordNode
+  KeywordLabel keyword;    // the keyword label; non-empty exactly when kinds has kKeywordNode
 };
 
 struct EdgeInfo {
