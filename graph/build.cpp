@@ -185,6 +185,7 @@ MotionGraph GraphBuild::finish(const BuildProgress& progress) {
     g.activity = std::move(s.speed);
   }
   g.key_poses = finish_samples<double>(*s.key_poses);
+  g.key_sketch = key_pose_sketch(g.key_poses, junction_pose_dims(g.motion.skeleton));
 
   // Natural edges inside continuous runs, then the analysis's.
   GraphBuilder builder(std::move(s.nodes));

@@ -1,22 +1,22 @@
 // Saving and loading built graphs.
 //
-// File format (version 7), little-endian:
+// File format (version 8; 7 lacks the key sketch), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
 //   u64      how many of the payload's first bytes the checksum covers: all but the motion's values
 //   payload  params, skeleton, clips, the motion's frame rate and count, nodes, edges, speech
-//            features, activity, key poses (write_payload), the reference facts
+//            features, activity, key poses and their sketch (write_payload), the reference facts
 //            (write_reference_facts: the assembly's capture facts and the frames' beat end costs,
 //            graph/reference_facts.h), the SMPL-X body (write_body: empty for BVH references), and
 //            last the motion (write_motion): frames per block, each block's checksum, then the
 //            rotations and the translations
 //   u64      checksum of the payload's first bytes (XXH3-64, engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The eight largest (the
+// The large parts are flat arrays in the layout they have in memory. The nine largest (the
 // motion's rotations and translations, the speech features, the motion activity, the key
-// nodes' junction poses, the foot contacts, the beat end costs and the body's face) each start on
-// a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded graph reads the first
-// seven in place from the file's mapping (engine/core/files.h MappedFile): the pages of the file
+// nodes' junction poses and their sketch, the foot contacts, the beat end costs and the body's
+// face) each start on a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded
+// graph reads the first eight in place from the file's mapping (engine/core/files.h MappedFile): the pages of the file
 // are shared by every process that reads it, and none of them is kept resident by the load.
 //
 // A load checks the file's checksum and every field of the part it covers in one pass. The
@@ -456,7 +456,16 @@ void write_motion(Writer& w, const Motion& m) {
   w.aligned(m.translations);
 }
 
-void write_payload(Writer& w, const MotionGraph& g) {
+// The key poses' sketch: axes per part (u32), the basis (u64 count, doubles), the scale, the
+// values (aligned: read in place).
+void write_key_sketch(Writer& w, const KeyPoseSketch& s) {
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(s.axes));
+  w.vec(s.basis);
+  w.pod(s.scale);
+  w.aligned(s.values.data(), s.values.size());
+}
+
+void write_payload(Writer& w, const MotionGraph& g, std::uint32_t version) {
   write_params(w, g.params);
   write_skeleton(w, g.motion.skeleton);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.clips.size()));
@@ -496,6 +505,7 @@ void write_payload(Writer& w, const MotionGraph& g) {
   w.aligned(g.speech.data(), g.speech.size());
   w.aligned(g.activity.data(), g.activity.size());
   w.aligned(g.key_poses);
+  if (version >= 8) write_key_sketch(w, g.key_sketch);
   write_reference_facts(w, g);
   write_body(w, g.body);
   write_motion(w, g.motion);
@@ -524,6 +534,45 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
   if (!valid) r.fail("a motion activity is negative or not finite");
   g.speech = Samples<float>::view(speech, speech_n, src.owner);
   g.activity = Samples<float>::view(activity, activity_n, src.owner);
+}
+
+// The key poses' sketch (write_key_sketch): none (axes 0: a graph made by hand may have key poses
+// without one), or `axes` (1 to 64, at most half the pose's
+// values) per part, an orthonormal basis zero off its part, a finite scale and keys x 2 axes
+// finite values, read in place.
+void read_key_sketch(Reader& r, const Source& src, MotionGraph& g) {
+  KeyPoseSketch& s = g.key_sketch;
+  const std::uint32_t axes = r.pod<std::uint32_t>();
+  const std::size_t dims = static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)), half = dims / 2;
+  if (axes > 64 || axes > half) r.fail("implausible key sketch axes");
+  if (axes > 0 && g.key_poses.empty()) r.fail("a key sketch without key poses");
+  s.axes = static_cast<int>(axes);
+  s.basis = r.vec<double>();
+  if (s.basis.size() != 2 * axes * dims) r.fail("the key sketch's basis disagrees with its axes x pose values");
+  s.scale = r.pod<double>();
+  if (!(s.scale >= 0.0 && std::isfinite(s.scale))) r.fail("the key sketch's scale is negative or not finite");
+  // Orthonormal rows (within 1e-12), each zero off its part: what makes the bound a bound.
+  for (std::size_t i = 0; i < 2 * axes; ++i) {
+    const double* row = s.basis.data() + i * dims;
+    const bool positions = i < axes;
+    for (std::size_t v = 0; v < dims; ++v)
+      if (!std::isfinite(row[v]) || (row[v] != 0.0 && (v < half) != positions))
+        r.fail("the key sketch's basis is not zero off its part");
+    for (std::size_t k = 0; k <= i; ++k) {
+      const double* other = s.basis.data() + k * dims;
+      double dot = 0.0;
+      for (std::size_t v = 0; v < dims; ++v) dot += row[v] * other[v];
+      if (!(std::abs(dot - (k == i ? 1.0 : 0.0)) <= 1e-12)) r.fail("the key sketch's basis is not orthonormal");
+    }
+  }
+  const auto [values, n] = r.aligned<double>();
+  if (n != g.keys.size() * 2 * axes) r.fail("the key sketch's values disagree with key nodes x axes");
+  bool finite = true;
+  r.in_place<double>(n, [&](const double* p, std::size_t, std::size_t m) {
+    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(p[i]);
+  });
+  if (!finite) r.fail("a key sketch value is not finite");
+  s.values = Samples<double>::view(values, n, src.owner);
 }
 
 // The key nodes' junction poses: none, or keys x junction_pose_dims finite values.
@@ -808,8 +857,8 @@ void read_motion(Reader& r, MotionGraph& g, const std::string& path, MotionCheck
 }
 
 template <typename SummedTo, typename Damaged>
-MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, MotionCheck mode,
-                         const SummedTo& summed_to, const Damaged& damaged) {
+MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, std::uint32_t version,
+                         MotionCheck mode, const SummedTo& summed_to, const Damaged& damaged) {
   MotionGraph g;
   g.params = read_params(r);
   g.motion.skeleton = read_skeleton(r);
@@ -820,6 +869,7 @@ MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, 
   g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g.transition_weight);
   read_speech(r, src, g);
   read_key_poses(r, src, g);
+  if (version >= 8) read_key_sketch(r, src, g);
   read_reference_facts(r, src, g);
   read_body(r, g);
   read_motion(r, g, path, mode, summed_to, damaged);
@@ -835,9 +885,10 @@ MotionGraph parse_graph(const Source& src, const std::string& path, MotionCheck 
   if (total < sizeof kMagic + sizeof(std::uint32_t)) throw Error(error_at_byte(path, 8, "graph file is truncated"));
   std::uint32_t version = 0;
   std::memcpy(&version, bytes + 8, sizeof version);
-  if (version != kVersion)
-    throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads version " +
-                std::to_string(kVersion) + ": rebuild it with 'gmg build'");
+  if (version < kOldestGraphFormatRead || version > kVersion)
+    throw Error(path + ": graph file format version " + std::to_string(version) + ", this gmg reads versions " +
+                std::to_string(kOldestGraphFormatRead) + " to " + std::to_string(kVersion) +
+                ": rebuild it with 'gmg build'");
   if (total < kHeader + sizeof(std::uint64_t)) throw Error(error_at_byte(path, 12, "graph file is truncated"));
   std::uint64_t size = 0, summed = 0;
   std::memcpy(&size, bytes + 12, sizeof size);
@@ -866,7 +917,7 @@ MotionGraph parse_graph(const Source& src, const std::string& path, MotionCheck 
   };
   try {
     return naming_memory_errors(path, "reading the graph",
-                                [&] { return read_payload(r, src, path, mode, summed_to, damaged); });
+                                [&] { return read_payload(r, src, path, version, mode, summed_to, damaged); });
   } catch (const Error&) {
     Checksum checksum;
     in_chunks(src, bytes + kHeader, static_cast<std::size_t>(summed),
@@ -882,20 +933,21 @@ void MotionGraph::check_unchanged() const {
   if (source) source->check_unchanged();
 }
 
-void graph_save(const std::string& path, const MotionGraph& g) {
+void graph_save(const std::string& path, const MotionGraph& g, std::uint32_t version) {
+  if (version < kOldestGraphFormatRead || version > kVersion)
+    throw Error(path + ": cannot write graph file format version " + std::to_string(version));
   Writer counter(nullptr);
-  write_payload(counter, g);
+  write_payload(counter, g, version);
   write_file_atomically(
       path,
       [&](std::ostream& out) {
         out.write(kMagic, sizeof kMagic);
-        const std::uint32_t version = kVersion;
         out.write(reinterpret_cast<const char*>(&version), sizeof version);
         const std::uint64_t size = counter.size(), summed = counter.summed();
         out.write(reinterpret_cast<const char*>(&size), sizeof size);
         out.write(reinterpret_cast<const char*>(&summed), sizeof summed);
         Writer w(&out);
-        write_payload(w, g);
+        write_payload(w, g, version);
         if (w.size() != size || w.summed() != summed) throw Error(path + ": graph changed while it was written");
         const std::uint64_t sum = w.checksum();
         out.write(reinterpret_cast<const char*>(&sum), sizeof sum);

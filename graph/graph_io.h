@@ -12,11 +12,15 @@ namespace gmg {
 // features, 4 aligned arrays read in place, 5 the SMPL-X body (shape, per-frame face), 6 the
 // reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h),
 // 7 the XXH3 checksum (engine/core/checksum.h) and the motion last, with a checksum per block of
-// frames.
-constexpr std::uint32_t kGraphFormatVersion = 7;
+// frames, 8 the key poses' sketch (graph/key_poses.h). Files of format 7 are still read (without
+// a sketch: a reenactment from them gives the same motion, computing more junction costs).
+constexpr std::uint32_t kGraphFormatVersion = 8;
+constexpr std::uint32_t kOldestGraphFormatRead = 7;
 
-// Writes atomically. Throws gmg::Error naming the file when it cannot be written.
-void graph_save(const std::string& path, const MotionGraph& g);
+// Writes atomically, in format `version` (kOldestGraphFormatRead to kGraphFormatVersion: 7 leaves
+// out the key sketch, for a gmg that reads only that). Throws gmg::Error naming the file when it
+// cannot be written or for a version it does not write.
+void graph_save(const std::string& path, const MotionGraph& g, std::uint32_t version = kGraphFormatVersion);
 
 // When the motion's values are checked (the rest of the file is checked by every load).
 enum class MotionCheck {

@@ -1,5 +1,9 @@
 #include "graph/key_poses.h"
 
+#include <algorithm>
+
+#include <Eigen/Eigenvalues>
+
 #include "graph/features.h"
 
 namespace gmg {
@@ -46,6 +50,48 @@ std::vector<double> key_junction_poses(const MotionGraph& g) {
     std::copy(v.data(), v.data() + v.size(), out.begin() + static_cast<std::ptrdiff_t>(k * dims));
   }
   return out;
+}
+
+KeyPoseSketch key_pose_sketch(const Samples<double>& key_poses, int pose_dims) {
+  KeyPoseSketch s;
+  const std::size_t dims = static_cast<std::size_t>(std::max(pose_dims, 0));
+  const std::size_t keys = dims > 0 ? key_poses.size() / dims : 0;
+  if (keys == 0 || dims < 2) return s;
+  const Eigen::Index d = static_cast<Eigen::Index>(dims / 2);
+  const Eigen::Index axes = std::min<Eigen::Index>(kSketchAxes, d);
+  const std::size_t sample = std::min<std::size_t>(keys, 4096);
+  auto pose = [&](std::size_t key) {
+    return Eigen::Map<const Eigen::VectorXd>(key_poses.data() + key * dims, static_cast<Eigen::Index>(dims));
+  };
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(2 * axes, 2 * d);
+  for (Eigen::Index part = 0; part < 2; ++part) {
+    // The principal axes of this part over the sample: the eigenvectors of its scatter matrix of
+    // largest eigenvalues (Eigen lists them ascending), orthonormal.
+    Eigen::MatrixXd x(static_cast<Eigen::Index>(sample), d);
+    for (std::size_t i = 0; i < sample; ++i)
+      x.row(static_cast<Eigen::Index>(i)) = pose(i * keys / sample).segment(part * d, d).transpose();
+    const Eigen::MatrixXd centred = x.rowwise() - x.colwise().mean();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(centred.transpose() * centred);
+    for (Eigen::Index a = 0; a < axes; ++a)
+      basis.block(part * axes + a, part * d, 1, d) = solver.eigenvectors().col(d - 1 - a).transpose();
+  }
+  s.axes = static_cast<int>(axes);
+  s.basis.resize(static_cast<std::size_t>(basis.size()));
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(s.basis.data(), 2 * axes, 2 * d) =
+      basis;
+  std::vector<double> values(keys * static_cast<std::size_t>(2 * axes));
+  constexpr std::size_t kStretch = 4096;  // keys between giving a long build's spilled poses back
+  for (std::size_t k = 0; k < keys; ++k) {
+    const auto p = pose(k);
+    Eigen::Map<Eigen::VectorXd>(values.data() + k * static_cast<std::size_t>(2 * axes), 2 * axes) = basis * p;
+    s.scale = std::max({s.scale, p.head(d).norm(), p.tail(d).norm()});
+    if ((k + 1) % kStretch == 0 || k + 1 == keys) {
+      const std::size_t first = k / kStretch * kStretch;
+      key_poses.release_pages(first * dims, (k + 1 - first) * dims);
+    }
+  }
+  s.values = std::move(values);
+  return s;
 }
 
 }  // namespace gmg

@@ -26,6 +26,12 @@ Eigen::VectorXd junction_pose(const MotionGraph& g, int f);
 // junction_pose of every key frame (MotionGraph::key_frames order), one after another.
 std::vector<double> key_junction_poses(const MotionGraph& g);
 
+// The sketch of key poses (keys x pose_dims values): the kSketchAxes principal axes of the
+// positions and of the velocities of up to 4096 keys spread evenly over them, and every key's
+// coordinates along them. No sketch (axes 0) without keys.
+inline constexpr int kSketchAxes = 8;
+KeyPoseSketch key_pose_sketch(const Samples<double>& key_poses, int pose_dims);
+
 // The same for one clip of a graph being built: its motion, and the nodes of its frames
 // (nodes[offset + i] is its frame i); its key frames' poses appended to `out` in frame order.
 void append_key_junction_poses(const Motion& clip, const std::vector<NodeInfo>& nodes, int offset,

@@ -73,6 +73,20 @@ struct MotionBlocks {
   std::vector<std::uint8_t> checked;  // 1 once the block was found sound
 };
 
+// A sketch of every key pose (graph/key_poses.h key_pose_sketch): its coordinates along the first
+// `axes` principal axes of the key poses' positions and as many of their velocities. The distance
+// between two sketches is at most that between the poses (the axes are orthonormal), so a planning
+// job bounds a key's junction cost from below without reading the key's pose
+// (search/junction.h key_lower_bounds).
+struct KeyPoseSketch {
+  int axes = 0;  // per part; 0: no sketch
+  // 2 axes rows of junction_pose_dims values, row-major, orthonormal: the first `axes` rows are 0
+  // on the velocities, the others 0 on the positions.
+  std::vector<double> basis;
+  Samples<double> values;  // keys x 2 axes: basis x key pose, key after key
+  double scale = 0.0;      // the largest norm of a key pose's positions or velocities (bounds rounding)
+};
+
 struct ClipInfo {
   std::string name;     // for reports: the motion file it came from
   int first_frame = 0;  // global index of its first frame
@@ -100,6 +114,7 @@ struct MotionGraph {
   // keys x junction_pose_dims values; empty for a graph made without them (the planner then
   // computes them from the motion).
   Samples<double> key_poses;
+  KeyPoseSketch key_sketch;  // of key_poses; none for a graph made without them, or read from format 7
   // Per-reference values that a reenactment would otherwise recompute from every frame, computed
   // once (graph/reference_facts.h) and, but for the index and the transition scale, kept in the
   // file: the key and break frames (in memory, from the nodes), the mean weight of the transitions,

@@ -1,6 +1,7 @@
 #include "search/junction.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "graph/key_poses.h"
 #include "graph/reference_facts.h"
@@ -59,6 +60,30 @@ void JunctionCost::costs(int c, const std::vector<int>& frames, std::vector<doub
                             : (g_.params.lambda_pos * pos(static_cast<Eigen::Index>(k)) +
                                g_.params.lambda_vel * vel(static_cast<Eigen::Index>(k))) /
                                   normaliser_;
+}
+
+void JunctionCost::key_lower_bounds(int c, const std::vector<std::size_t>& keys, std::vector<double>& out) {
+  out.assign(keys.size(), 0.0);
+  const KeyPoseSketch& sketch = g_.key_sketch;
+  if (sketch.axes == 0 || keys.empty()) return;
+  const Pose a = features(c);
+  const Eigen::Index axes = sketch.axes, d = a.size() / 2;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> basis(
+      sketch.basis.data(), 2 * axes, 2 * d);
+  const Eigen::VectorXd mine = basis * a;
+  // What rounding can add to a sketched distance, against the distance of the poses themselves:
+  // each coordinate is a sum of d products (relative error d x 2^-53 of the pose's norm), the basis
+  // is orthonormal to 1e-12 (graph_io checks it) and the norms are sums of a few hundred squares.
+  // 1e-8 of the norms is far above all of that and far below any distance a ranking tells apart.
+  const double slack_pos = 1e-8 * (a.head(d).norm() + sketch.scale);
+  const double slack_vel = 1e-8 * (a.tail(d).norm() + sketch.scale);
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const Eigen::Map<const Eigen::VectorXd> theirs(sketch.values.data() + keys[k] * static_cast<std::size_t>(2 * axes),
+                                                   2 * axes);
+    const double pos = std::max(0.0, (mine.head(axes) - theirs.head(axes)).norm() - slack_pos);
+    const double vel = std::max(0.0, (mine.tail(axes) - theirs.tail(axes)).norm() - slack_vel);
+    out[k] = (g_.params.lambda_pos * pos + g_.params.lambda_vel * vel) / normaliser_ * (1.0 - 1e-9);
+  }
 }
 
 void JunctionCost::key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out) {

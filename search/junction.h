@@ -34,6 +34,12 @@ class JunctionCost {
   void key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out);
   bool has_key_poses() const { return !keys_.empty(); }
 
+  // A lower bound of J(c, s) for each of the key nodes `keys` (as key_costs), never above the value
+  // key_costs gives for it, from the graph's sketch of the key poses (MotionGraph::key_sketch: a
+  // few coordinates per key, so a ranking that skips the keys whose bound cannot rank does not
+  // read their poses); all 0 for a graph without a sketch.
+  void key_lower_bounds(int c, const std::vector<std::size_t>& keys, std::vector<double>& out);
+
   // The largest root-relative joint distance (file units) between frames a and b: the raw pose
   // gap a report shows.
   double largest_joint_gap(int a, int b);

@@ -178,24 +178,42 @@ class Planner {
       cheap[m] = distance[m] + params_.junction_rank * start_cost(m, nullptr, m, false);
     std::vector<std::pair<double, std::size_t>> best;  // max-heap: the exact_ranks_ lowest so far
     std::vector<char> done(n, 0);
-    std::vector<std::size_t> some;
+    std::vector<std::size_t> some, kept, keys, at;
     std::vector<int> frames;
-    std::vector<double> part, j;
-    // The full distances of `some` (ascending), pruned again by the bound with speech.
+    std::vector<double> part, j, bound;
+    // The full distances of `some` (ascending), pruned again by the bound with the junction cost's
+    // lower bound (JunctionCost::key_lower_bounds), then by the bound with speech and that.
     auto complete = [&](const std::vector<std::size_t>& group) {
+      const double bar = best.size() < exact_ranks_ ? std::numeric_limits<double>::infinity() : best.front().first;
+      const std::vector<std::size_t>* survivors = &group;
+      bound.clear();
+      if (junction() && junction_.has_key_poses()) {
+        keys.clear();
+        for (std::size_t m : group) keys.push_back(candidates[m]);
+        junction_.key_lower_bounds(reference_, keys, part);
+        kept.clear();
+        for (std::size_t i = 0; i < group.size(); ++i)
+          if (distance[group[i]] + params_.junction_rank * start_cost(group[i], &part, i, false) <= bar) {
+            kept.push_back(group[i]);
+            bound.push_back(part[i]);
+          }
+        survivors = &kept;
+      }
       frames.clear();
-      for (std::size_t m : group) frames.push_back(candidate_frames_[m]);
+      for (std::size_t m : *survivors) frames.push_back(candidate_frames_[m]);
       if (speeching()) {
         speech_.window_costs(sub.start, window_of(sub), frames, part);
-        for (std::size_t i = 0; i < group.size(); ++i) speech_part_[group[i]] = part[i];
+        for (std::size_t i = 0; i < survivors->size(); ++i) speech_part_[(*survivors)[i]] = part[i];
       }
-      const double bar = best.size() < exact_ranks_ ? std::numeric_limits<double>::infinity() : best.front().first;
-      std::vector<std::size_t> keys, at;
-      for (std::size_t m : group)
-        if (distance[m] + params_.junction_rank * start_cost(m, nullptr, m, true) <= bar) {
+      keys.clear();
+      at.clear();
+      for (std::size_t i = 0; i < survivors->size(); ++i) {
+        const std::size_t m = (*survivors)[i];
+        if (distance[m] + params_.junction_rank * start_cost(m, bound.empty() ? nullptr : &bound, i, true) <= bar) {
           keys.push_back(candidates[m]);
           at.push_back(m);
         }
+      }
       j.clear();
       if (junction() && junction_.has_key_poses()) {
         junction_.key_costs(reference_, keys, j);

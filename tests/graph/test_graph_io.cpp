@@ -2,6 +2,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "engine/core/files.h"
 #include "graph/build.h"
 #include "graph/graph_io.h"
+#include "graph/key_poses.h"
 #include "graph/reference_facts.h"
 #include "graph/stats.h"
 #include "tests/core/helpers.h"
@@ -122,6 +124,11 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   const MotionGraph h = graph_load(path);
   EXPECT_EQ(h.frame_count(), g.frame_count());
   EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
+  ASSERT_GT(g.key_sketch.axes, 0);
+  EXPECT_EQ(h.key_sketch.axes, g.key_sketch.axes);
+  EXPECT_EQ(h.key_sketch.basis, g.key_sketch.basis);
+  EXPECT_EQ(h.key_sketch.scale, g.key_sketch.scale);
+  EXPECT_EQ(h.key_sketch.values, g.key_sketch.values);
   EXPECT_EQ(h.node(150).keyword, "big");
   EXPECT_EQ(h.clips[1].name, "b.bvh");
   EXPECT_EQ(h.params.l_pn, g.params.l_pn);
@@ -152,7 +159,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 7);
+  EXPECT_EQ(plain[8], 8);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -163,7 +170,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 7);
+  EXPECT_EQ(bytes[8], 8);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -317,7 +324,7 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads version 7: rebuild it with 'gmg build'");
+                              ", this gmg reads versions 7 to 8: rebuild it with 'gmg build'");
   }
 }
 
@@ -353,7 +360,7 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
   };
   auto expect_refused = [&](const std::string& fragment, const std::function<void(MotionGraph&)>& damage) {
     const std::string what = error_after(damage);
-    EXPECT_NE(what.find("hand.gmg: byte "), std::string::npos) << what;
+    EXPECT_NE(what.find("hand.gmg: byte "), std::string::npos) << fragment << ": " << what;
     EXPECT_NE(what.find(fragment), std::string::npos) << what;
   };
   expect_refused("frame rate inf is outside 1 to 1000 fps",
@@ -380,6 +387,28 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
     ASSERT_EQ(boost::target(*boost::out_edges(GraphVertex{3}, g.graph).first, g.graph), 4u);
     g.graph.m_forward.m_edge_properties[g.graph.m_forward.m_rowstart[3]].weight = 0.5;
   });
+  // The key sketch: what makes its bound a bound (orthonormal rows, each zero off its part), its
+  // sizes and finite values.
+  expect_refused("the key sketch's basis is not orthonormal", [](MotionGraph& g) {
+    for (int v = 0; v < junction_pose_dims(g.motion.skeleton); ++v) g.key_sketch.basis[static_cast<std::size_t>(v)] *= 1.001;
+  });
+  expect_refused("the key sketch's basis is not zero off its part", [](MotionGraph& g) {
+    // The first row is a position axis; the pose's last value is a velocity.
+    g.key_sketch.basis[static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)) - 1] = 1e-3;
+  });
+  expect_refused("a key sketch value is not finite", [](MotionGraph& g) {
+    std::vector<double> v(g.key_sketch.values.begin(), g.key_sketch.values.end());
+    v[5] = std::numeric_limits<double>::quiet_NaN();
+    g.key_sketch.values = std::move(v);
+  });
+  expect_refused("the key sketch's values disagree with key nodes x axes", [](MotionGraph& g) {
+    std::vector<double> v(g.key_sketch.values.begin(), g.key_sketch.values.end());
+    v.pop_back();
+    g.key_sketch.values = std::move(v);
+  });
+  expect_refused("implausible key sketch axes", [](MotionGraph& g) { g.key_sketch.axes = 65; });
+  expect_refused("the key sketch's scale is negative or not finite", [](MotionGraph& g) { g.key_sketch.scale = -1.0; });
+  expect_refused("a key sketch without key poses", [](MotionGraph& g) { g.key_poses = Samples<double>(); });
   expect_refused("unknown or repeated channel", [](MotionGraph& g) {
     g.motion.skeleton.joints[1].channels.push_back(g.motion.skeleton.joints[1].channels.back());
   });
@@ -390,6 +419,28 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
 // Format 6 keeps the reference facts (graph/reference_facts.h): they load exactly, the per-frame
 // arrays in place from the file, and the index and transition scale the load takes from the nodes
 // and edges equal those of the build, bit for bit.
+// Format 7, the format before the key sketch, is still written on request and read: the same
+// graph without a sketch. No other version is written.
+TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
+  const MotionGraph g = two_clip_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("g7.gmg"), g, 7);
+  const std::string bytes = read_file_bytes(dir.file("g7.gmg"));
+  EXPECT_EQ(bytes[8], 7);
+  const MotionGraph h = graph_load(dir.file("g7.gmg"));
+  EXPECT_EQ(h.key_sketch.axes, 0);
+  EXPECT_TRUE(h.key_sketch.values.empty());
+  EXPECT_EQ(h.key_poses, g.key_poses);
+  EXPECT_EQ(h.motion.rotations, g.motion.rotations);
+  EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
+  graph_save(dir.file("g8.gmg"), g);
+  EXPECT_EQ(read_file_bytes(dir.file("g8.gmg"))[8], 8);
+  EXPECT_GT(read_file_bytes(dir.file("g8.gmg")).size(), bytes.size());
+  EXPECT_THROW(graph_save(dir.file("g6.gmg"), g, 6), Error);
+  EXPECT_THROW(graph_save(dir.file("g9.gmg"), g, 9), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("g6.gmg")));
+}
+
 // The file keeps each edge's natural flag after the weights (u64 count, one byte an edge): 1
 // exactly for the steps to the next frame. A file whose flags say otherwise is refused even
 // behind a valid checksum: a flag on a transition, or none on a step.

@@ -117,5 +117,99 @@ TEST(Junction, KeyCostsReadInPlaceEqualTheBatch) {
     for (std::size_t m = 0; m < some.size(); ++m) EXPECT_EQ(strided[m], batch[some[m]]) << "key " << some[m];
   }
 }
+// A chain of six joints whose every joint turns about two axes with its own slow waves: poses of
+// 36 values (18 positions, 18 velocities), more than the sketch's 8 axes per part. Onsets every
+// `every` frames, one break at the end, a few transitions.
+MotionGraph waving_graph(int n, int every) {
+  Skeleton sk;
+  for (int j = 0; j < 6; ++j) {
+    Joint joint;
+    joint.name = "j" + std::to_string(j);
+    joint.parent = j - 1;
+    joint.offset = j == 0 ? glm::dvec3(0) : glm::dvec3(0, 8, 1);
+    joint.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
+    sk.joints.push_back(joint);
+  }
+  MotionGraph g;
+  g.motion = motion_rest(sk, 30.0, n);
+  for (int f = 0; f < n; ++f)
+    for (int j = 0; j < 6; ++j)
+      g.motion.rotations[g.motion.index(f, j)] =
+          glm::angleAxis(0.6 * std::sin(0.037 * (j + 1) * f + j), glm::dvec3(0, 0, 1)) *
+          glm::angleAxis(0.4 * std::cos(0.051 * (7 - j) * f), glm::dvec3(1, 0, 0));
+  g.clips = {{"waving", 0, n}};
+  GraphBuilder b(n);
+  for (int f = every / 2; f < n; f += every) b.node(f).kinds |= kOnsetNode;
+  b.node(n - 1).kinds |= kBreakNode;
+  for (int f = 0; f + 1 < n; ++f)
+    if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0});
+  for (int f = 7; f + 40 < n; f += 37) b.add_edge(f, f + 40, EdgeInfo{1.0 + 0.01 * f});
+  g.graph = b.finish();
+  g.key_poses = key_junction_poses(g);
+  g.key_sketch = key_pose_sketch(g.key_poses, junction_pose_dims(sk));
+  return g;
+}
+
+// The sketch's bound is never above the key's cost as key_costs gives it, for any key and any
+// frame the output is at, and is most of it; a graph without a sketch bounds every key by 0.
+TEST(Junction, KeyLowerBoundsNeverExceedTheKeyCosts) {
+  MotionGraph g = waving_graph(600, 5);
+  ASSERT_EQ(g.key_sketch.axes, kSketchAxes);
+  ASSERT_LT(kSketchAxes, junction_pose_dims(g.motion.skeleton) / 2);
+  JunctionCost j(g);
+  std::vector<std::size_t> all(g.key_frames().size());
+  for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
+  double bounded = 0.0, total = 0.0;
+  for (int c : {2, 77, 302, 599}) {  // a key node (302) and frames that are not
+    std::vector<double> costs, bounds;
+    j.key_costs(c, all, costs);
+    j.key_lower_bounds(c, all, bounds);
+    ASSERT_EQ(bounds.size(), costs.size());
+    for (std::size_t m = 0; m < all.size(); ++m) {
+      EXPECT_LE(bounds[m], costs[m]) << "frame " << c << ", key " << m;
+      EXPECT_GE(bounds[m], 0.0);
+      bounded += bounds[m];
+      total += costs[m];
+    }
+  }
+  EXPECT_GT(bounded, 0.8 * total) << "the poses vary in few directions: the sketch holds most of each distance";
+  g.key_sketch = KeyPoseSketch();
+  JunctionCost none(g);
+  std::vector<double> zeros;
+  none.key_lower_bounds(77, all, zeros);
+  EXPECT_EQ(zeros, std::vector<double>(all.size(), 0.0));
+}
+
+// Ranking with the bound skips keys, never a plan's choice: the plans of a graph with and without
+// its sketch are the same, segment by segment.
+TEST(Junction, TheSketchChangesNoPlan) {
+  const MotionGraph with = waving_graph(900, 3);
+  MotionGraph without = waving_graph(900, 3);
+  without.key_sketch = KeyPoseSketch();
+  std::vector<Subsequence> subs;
+  for (int start = 0, k = 0; start < 400; ++k) {
+    const int length = 6 + (k * 7) % 17;
+    subs.push_back({start, length, Termination::Rhythm, ""});
+    start += length;
+  }
+  SearchParams p;
+  p.l_npaths = 4;  // the ranking's first 4 x 8 candidates are complete without bounds: the rest are bounded
+  p.retries = 1;
+  p.variety = 0.0;  // no stretch withheld: every key node competes on its pose
+  for (int seed : {1, 2, 3}) {
+    std::mt19937_64 a(static_cast<unsigned>(seed)), b(static_cast<unsigned>(seed));
+    const Plan x = plan_reenactment(with, subs, p, a);
+    const Plan y = plan_reenactment(without, subs, p, b);
+    ASSERT_EQ(x.segments.size(), y.segments.size());
+    int jumps = 0;
+    for (std::size_t s = 0; s < x.segments.size(); ++s) {
+      EXPECT_EQ(x.segments[s].path, y.segments[s].path) << "seed " << seed << ", segment " << s;
+      EXPECT_EQ(x.segments[s].junction_cost, y.segments[s].junction_cost);
+      jumps += x.segments[s].junction_from >= 0 && x.segments[s].junction_from + 1 != x.segments[s].path.front();
+    }
+    EXPECT_GT(jumps, 3) << "the plans start afresh often enough for the ranking to matter";
+  }
+}
+
 }  // namespace
 }  // namespace gmg
