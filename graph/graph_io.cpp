@@ -857,8 +857,8 @@ void read_motion(Reader& r, MotionGraph& g, const std::string& path, MotionCheck
 }
 
 template <typename SummedTo, typename Damaged>
-MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, std::uint32_t version,
-                         MotionCheck mode, const SummedTo& summed_to, const Damaged& damaged) {
+MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, std::uint32_t version, MotionCheck mode,
+                         const SummedTo& summed_to, const Damaged& damaged) {
   MotionGraph g;
   g.params = read_params(r);
   g.motion.skeleton = read_skeleton(r);

@@ -19,8 +19,9 @@ class KeywordLabel {
   KeywordLabel() = default;  // no label: empty() and str() == ""
   // The label with this text (the empty text is no label).
   KeywordLabel(std::string_view text);  // NOLINT(google-explicit-constructor): assigned from strings
-  KeywordLabel(const std::string& text) : KeywordLabel(std::string_view(text)) {}  // NOLINT(google-explicit-constructor)
-  KeywordLabel(const char* text) : KeywordLabel(std::string_view(text)) {}         // NOLINT(google-explicit-constructor)
+  KeywordLabel(const std::string& text)
+      : KeywordLabel(std::string_view(text)) {}                             // NOLINT(google-explicit-constructor)
+  KeywordLabel(const char* text) : KeywordLabel(std::string_view(text)) {}  // NOLINT(google-explicit-constructor)
 
   bool empty() const { return id_ == 0; }
   // The text; the reference stays valid for the life of the process.

@@ -155,14 +155,14 @@ std::string fixed6(double v) {
 TEST(Strings, FormatFixed6IsPrintfs) {
   EXPECT_EQ(fixed6(0.0), "0.000000");
   EXPECT_EQ(fixed6(-0.0), "0.000000");
-  EXPECT_EQ(fixed6(-4e-7), "0.000000");   // rounds to zero: no sign
+  EXPECT_EQ(fixed6(-4e-7), "0.000000");  // rounds to zero: no sign
   EXPECT_EQ(fixed6(-6e-7), "-0.000001");
   EXPECT_EQ(fixed6(1.5), "1.500000");
   EXPECT_EQ(fixed6(-123.4567894), "-123.456789");
   EXPECT_EQ(fixed6(999999.9999996), "1000000.000000");
   // Exact ties: k/128 for odd k is a half-integer number of millionths; printf rounds to even.
-  EXPECT_EQ(fixed6(1.0 / 128), "0.007812");   // 7812.5 millionths
-  EXPECT_EQ(fixed6(3.0 / 128), "0.023438");   // 23437.5
+  EXPECT_EQ(fixed6(1.0 / 128), "0.007812");    // 7812.5 millionths
+  EXPECT_EQ(fixed6(3.0 / 128), "0.023438");    // 23437.5
   EXPECT_EQ(fixed6(-5.0 / 128), "-0.039062");  // -39062.5
   EXPECT_EQ(fixed6(1e300).substr(0, 4), "1000");
   EXPECT_EQ(fixed6(1e300).size(), 301u + 7u);
@@ -195,7 +195,8 @@ TEST(Strings, FormatFixed6IsPrintfs) {
       values.push_back(v);
   std::size_t differing = 0;
   for (double v : values)
-    if (fixed6(v) != printf_fixed6(v) && ++differing <= 5) ADD_FAILURE() << v << ": " << fixed6(v) << " vs " << printf_fixed6(v);
+    if (fixed6(v) != printf_fixed6(v) && ++differing <= 5)
+      ADD_FAILURE() << v << ": " << fixed6(v) << " vs " << printf_fixed6(v);
   EXPECT_EQ(differing, 0u) << "of " << values.size();
 }
 

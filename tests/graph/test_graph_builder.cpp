@@ -60,8 +60,8 @@ TEST(GraphBuilder, AStepToTheNextFrameIsTheNaturalEdgeOfWeightZero) {
 TEST(GraphBuilder, ArraysInCsrOrderAreMovedInAndChecked) {
   std::vector<GraphVertex> targets = {1, 2, 0};
   const GraphVertex* data = targets.data();
-  const GraphStorage g = graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 3}, std::move(targets),
-                                                   {{0.0}, {1.5}, {2.5}});
+  const GraphStorage g =
+      graph_storage_from_arrays(std::vector<NodeInfo>(3), {0, 2, 2, 3}, std::move(targets), {{0.0}, {1.5}, {2.5}});
   EXPECT_EQ(g.m_forward.m_column.data(), data) << "the targets array is moved, not copied";
   EXPECT_EQ(out_of(g, 0), (std::vector<std::pair<int, double>>{{1, 0.0}, {2, 1.5}}));
   EXPECT_EQ(out_of(g, 2), (std::vector<std::pair<int, double>>{{0, 2.5}}));

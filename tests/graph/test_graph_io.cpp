@@ -375,9 +375,8 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
   expect_refused("keyword label on a frame that is not a keyword node",
                  [](MotionGraph& g) { g.graph[5].keyword = "stray"; });
   expect_refused("a node has unknown kinds", [](MotionGraph& g) { g.graph[5].kinds |= 0x80; });
-  expect_refused("an edge weight is negative or not finite", [](MotionGraph& g) {
-    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{-1.0});
-  });
+  expect_refused("an edge weight is negative or not finite",
+                 [](MotionGraph& g) { g.graph = with_edge(g.graph, 3, 90, EdgeInfo{-1.0}); });
   expect_refused("an edge weight is negative or not finite", [](MotionGraph& g) {
     g.graph = with_edge(g.graph, 3, 90, EdgeInfo{std::numeric_limits<double>::quiet_NaN()});
   });
@@ -390,7 +389,8 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
   // The key sketch: what makes its bound a bound (orthonormal rows, each zero off its part), its
   // sizes and finite values.
   expect_refused("the key sketch's basis is not orthonormal", [](MotionGraph& g) {
-    for (int v = 0; v < junction_pose_dims(g.motion.skeleton); ++v) g.key_sketch.basis[static_cast<std::size_t>(v)] *= 1.001;
+    for (int v = 0; v < junction_pose_dims(g.motion.skeleton); ++v)
+      g.key_sketch.basis[static_cast<std::size_t>(v)] *= 1.001;
   });
   expect_refused("the key sketch's basis is not zero off its part", [](MotionGraph& g) {
     // The first row is a position axis; the pose's last value is a velocity.
