@@ -17,11 +17,13 @@ namespace gmg {
 class KeywordLabel {
  public:
   KeywordLabel() = default;  // no label: empty() and str() == ""
-  // The label with this text (the empty text is no label).
-  KeywordLabel(std::string_view text);  // NOLINT(google-explicit-constructor): assigned from strings
-  KeywordLabel(const std::string& text)
-      : KeywordLabel(std::string_view(text)) {}                             // NOLINT(google-explicit-constructor)
-  KeywordLabel(const char* text) : KeywordLabel(std::string_view(text)) {}  // NOLINT(google-explicit-constructor)
+  // The label with this text (the empty text is no label). Implicit: labels are assigned and
+  // compared as the strings they hold.
+  KeywordLabel(std::string_view text);  // NOLINT(google-explicit-constructor)
+  // NOLINTNEXTLINE(google-explicit-constructor)
+  KeywordLabel(const std::string& text) : KeywordLabel(std::string_view(text)) {}
+  // NOLINTNEXTLINE(google-explicit-constructor)
+  KeywordLabel(const char* text) : KeywordLabel(std::string_view(text)) {}
 
   bool empty() const { return id_ == 0; }
   // The text; the reference stays valid for the life of the process.
