@@ -149,6 +149,10 @@ void motion_check_finite(const Motion& m, const std::string& what) {
 }
 
 void motion_release_pages(const Motion& m) {
+  // A short reference's pages are kept: mapping them again costs more than the memory they hold
+  // (every subsequence of a reenactment would fault its stretches in anew).
+  if (m.rotations.size() * sizeof(glm::dquat) + m.translations.size() * sizeof(glm::dvec3) < kKeepMotionPagesBelow)
+    return;
   release_mapped_pages(m.rotations.data(), m.rotations.size() * sizeof(glm::dquat));
   release_mapped_pages(m.translations.data(), m.translations.size() * sizeof(glm::dvec3));
   release_mapped_pages(m.euler_hints.data(), m.euler_hints.size() * sizeof(glm::dvec3));

@@ -93,7 +93,11 @@ void motion_check_finite(const Motion& m, const std::string& what);
 // Gives back the pages of m's samples where they are read in place from a mapped file (a graph's
 // motion, graph/graph_io.h): a reader of scattered frames (a planner's poses, an assembly's pieces)
 // calls it when done with a stretch, so that what stays resident is what it reads next, not every
-// stretch it ever read (engine/core/files.h release_mapped_pages). Nothing for owned samples.
+// stretch it ever read (engine/core/files.h release_mapped_pages). Nothing for owned samples, nor
+// for a motion under kKeepMotionPagesBelow bytes (rotations and translations): keeping all of a
+// short reference costs little, and giving it back made every subsequence of a reenactment map its
+// stretches anew (a twentieth of a one-minute reenactment from a one-minute reference).
+inline constexpr std::size_t kKeepMotionPagesBelow = std::size_t{64} << 20;
 void motion_release_pages(const Motion& m);
 // The same for frames [first, first + count) only: a pass over a long motion calls it every
 // stretch so that a 19 h reference spilled to disk is never all resident at once.

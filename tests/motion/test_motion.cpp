@@ -2,13 +2,21 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <cstring>
+#include <memory>
 #include <string>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "engine/core/files.h"
 #include "engine/core/math.h"
 #include "engine/motion/bvh.h"
 #include "engine/motion/motion.h"
 #include "tests/core/helpers.h"
 #include "tests/motion/motion_test_util.h"
+#include "tests/test_support.h"
 
 namespace gmg {
 namespace {
@@ -44,4 +52,55 @@ TEST(Skeleton, MismatchIsExplained) {
 }
 
 }  // namespace
+// Pages of [p, p + size) mapped in this process (/proc/self/pagemap's present bit).
+std::size_t present_pages(const void* p, std::size_t size) {
+  const long page = ::sysconf(_SC_PAGESIZE);
+  const int fd = ::open("/proc/self/pagemap", O_RDONLY);
+  if (fd < 0) return 0;
+  std::size_t present = 0;
+  for (std::size_t off = 0; off < size; off += static_cast<std::size_t>(page)) {
+    std::uint64_t entry = 0;
+    const auto at =
+        static_cast<off_t>((reinterpret_cast<std::uintptr_t>(p) + off) / static_cast<std::size_t>(page) * 8);
+    if (::pread(fd, &entry, sizeof entry, at) == static_cast<ssize_t>(sizeof entry) && (entry >> 63) != 0) ++present;
+  }
+  ::close(fd);
+  return present;
+}
+
+// A motion served from a file gives its pages back after a reader's stretch only when it is long:
+// a short one keeps them (motion_release_pages).
+TEST(Motion, OnlyALongServedMotionGivesItsPagesBack) {
+  gmg::testing::TempDir dir;
+  for (const std::size_t frames : {std::size_t{2000}, kKeepMotionPagesBelow / (56 * 10) + 2000}) {
+    const std::size_t joints = 10, values = frames * joints;
+    // A file of rotations then translations (unit quaternions, zero translations), mapped.
+    std::string bytes(values * (sizeof(glm::dquat) + sizeof(glm::dvec3)), '\0');
+    const glm::dquat unit(1, 0, 0, 0);
+    for (std::size_t i = 0; i < values; ++i) std::memcpy(&bytes[i * sizeof unit], &unit, sizeof unit);
+    gmg::testing::write_text(dir.file("m.bin"), bytes);
+    auto file = std::make_shared<const MappedFile>(dir.file("m.bin"));
+    Motion m;
+    m.skeleton.joints.resize(joints);
+    m.frame_count = static_cast<int>(frames);
+    const auto* q = reinterpret_cast<const glm::dquat*>(file->data());
+    m.rotations = Samples<glm::dquat>::view(q, values, file);
+    m.translations = Samples<glm::dvec3>::view(reinterpret_cast<const glm::dvec3*>(q + values), values, file);
+    const Motion& served = m;  // read, not changed (a change would copy the samples)
+    double sum = 0.0;
+    for (std::size_t i = 0; i < values; i += 64) sum += served.rotations[i].w + served.translations[i].x;
+    EXPECT_EQ(sum, static_cast<double>((values + 63) / 64));
+    const std::size_t read = present_pages(file->data(), file->size());
+    ASSERT_GT(read, 0u);
+    motion_release_pages(served);
+    ASSERT_TRUE(served.rotations.is_view());
+    const bool long_motion = bytes.size() >= kKeepMotionPagesBelow;
+    if (long_motion) {
+      EXPECT_LE(present_pages(file->data(), file->size()), 2u) << frames << " frames";
+    } else {
+      EXPECT_EQ(present_pages(file->data(), file->size()), read) << frames << " frames";
+    }
+  }
+}
+
 }  // namespace gmg
