@@ -542,7 +542,7 @@ void read_speech(Reader& r, const Source& src, MotionGraph& g) {
 // finite values, read in place.
 void read_key_sketch(Reader& r, const Source& src, MotionGraph& g) {
   KeyPoseSketch& s = g.key_sketch;
-  const std::uint32_t axes = r.pod<std::uint32_t>();
+  const std::size_t axes = r.pod<std::uint32_t>();
   const std::size_t dims = static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton)), half = dims / 2;
   if (axes > 64 || axes > half) r.fail("implausible key sketch axes");
   if (axes > 0 && g.key_poses.empty()) r.fail("a key sketch without key poses");

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 
 namespace gmg {
 
@@ -106,8 +105,8 @@ char* format_fixed6(double v, char* out) {
   if (0.5 - std::abs(p - q) <= 0x1p-12) {
     char* end = std::to_chars(out, out + kFixed6Chars, v, std::chars_format::fixed, 6).ptr;
     if (std::string_view(out, static_cast<std::size_t>(end - out)) == "-0.000000") {
-      std::memcpy(out, "0.000000", 8);
-      return out + 8;
+      const std::string_view zero = "0.000000";  // the text, not a C string: no terminator
+      return std::copy(zero.begin(), zero.end(), out);
     }
     return end;
   }
