@@ -5,10 +5,12 @@
 #include <random>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <sys/mount.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 
 namespace gmg::testing {
@@ -62,6 +64,21 @@ SmallDisk::~SmallDisk() {
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+std::size_t present_pages(const void* p, std::size_t size) {
+  const long page = ::sysconf(_SC_PAGESIZE);
+  const int fd = ::open("/proc/self/pagemap", O_RDONLY);
+  if (fd < 0) return 0;
+  std::size_t present = 0;
+  for (std::size_t off = 0; off < size; off += static_cast<std::size_t>(page)) {
+    std::uint64_t entry = 0;
+    const auto at =
+        static_cast<off_t>((reinterpret_cast<std::uintptr_t>(p) + off) / static_cast<std::size_t>(page) * 8);
+    if (::pread(fd, &entry, sizeof entry, at) == static_cast<ssize_t>(sizeof entry) && (entry >> 63) != 0) ++present;
+  }
+  ::close(fd);
+  return present;
 }
 
 }  // namespace gmg::testing

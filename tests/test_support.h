@@ -1,6 +1,7 @@
 // Helpers shared by the tests: temporary folders, the shared data folder.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -48,6 +49,10 @@ class SmallDisk {
 
 // Writes text (bytes as given) to a file.
 void write_text(const std::string& path, const std::string& text);
+
+// How many pages of [p, p + size) are mapped in this process (/proc/self/pagemap's present bit;
+// 0 when it cannot be read).
+std::size_t present_pages(const void* p, std::size_t size);
 
 }  // namespace gmg::testing
 

@@ -25,6 +25,7 @@ namespace gmg {
 namespace {
 
 using testing::error_of;
+using testing::present_pages;
 using testing::TempDir;
 using testing::write_text;
 
@@ -199,22 +200,6 @@ TEST(Files, MappedFileReleaseKeepsTheBytes) {
   file.release(0, file.size());  // the pages go back to the page cache, the bytes stay readable
   EXPECT_EQ(std::string(file.data(), file.size()), bytes);
   EXPECT_FALSE(file.changed());
-}
-
-// Pages of [p, p + size) mapped in this process (/proc/self/pagemap's present bit).
-std::size_t present_pages(const char* p, std::size_t size) {
-  const long page = ::sysconf(_SC_PAGESIZE);
-  const int fd = ::open("/proc/self/pagemap", O_RDONLY);
-  if (fd < 0) return 0;
-  std::size_t present = 0;
-  for (std::size_t off = 0; off < size; off += static_cast<std::size_t>(page)) {
-    std::uint64_t entry = 0;
-    const auto at =
-        static_cast<off_t>((reinterpret_cast<std::uintptr_t>(p) + off) / static_cast<std::size_t>(page) * 8);
-    if (::pread(fd, &entry, sizeof entry, at) == static_cast<ssize_t>(sizeof entry) && (entry >> 63) != 0) ++present;
-  }
-  ::close(fd);
-  return present;
 }
 
 // release_mapped_pages gives back the pages of a live mapping that a range covers, and leaves

@@ -2,13 +2,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include "engine/core/files.h"
 #include "engine/core/math.h"
@@ -23,6 +19,7 @@ namespace {
 
 using testing::axis_matrix;
 using testing::kChainBvh;
+using testing::present_pages;
 using testing::replace_once;
 
 TEST(Motion, ForwardKinematicsMatchesHandComputedChain) {
@@ -52,22 +49,6 @@ TEST(Skeleton, MismatchIsExplained) {
 }
 
 }  // namespace
-// Pages of [p, p + size) mapped in this process (/proc/self/pagemap's present bit).
-std::size_t present_pages(const void* p, std::size_t size) {
-  const long page = ::sysconf(_SC_PAGESIZE);
-  const int fd = ::open("/proc/self/pagemap", O_RDONLY);
-  if (fd < 0) return 0;
-  std::size_t present = 0;
-  for (std::size_t off = 0; off < size; off += static_cast<std::size_t>(page)) {
-    std::uint64_t entry = 0;
-    const auto at =
-        static_cast<off_t>((reinterpret_cast<std::uintptr_t>(p) + off) / static_cast<std::size_t>(page) * 8);
-    if (::pread(fd, &entry, sizeof entry, at) == static_cast<ssize_t>(sizeof entry) && (entry >> 63) != 0) ++present;
-  }
-  ::close(fd);
-  return present;
-}
-
 // A motion served from a file gives its pages back after a reader's stretch only when it is long:
 // a short one keeps them (motion_release_pages).
 TEST(Motion, OnlyALongServedMotionGivesItsPagesBack) {
