@@ -187,7 +187,8 @@ class Planner {
       const double bar = best.size() < exact_ranks_ ? std::numeric_limits<double>::infinity() : best.front().first;
       const std::vector<std::size_t>* survivors = &group;
       bound.clear();
-      if (junction() && junction_.has_key_poses()) {
+      // While the bar is still infinite (the first group) no bound can prune: none is computed.
+      if (junction() && junction_.has_key_poses() && bar < std::numeric_limits<double>::infinity()) {
         keys.clear();
         for (std::size_t m : group) keys.push_back(candidates[m]);
         junction_.key_lower_bounds(reference_, keys, part);
