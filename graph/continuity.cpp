@@ -34,11 +34,23 @@ std::vector<double> continuity_thresholds(const PoseFeatures& f, const std::vect
 
 namespace {
 
-// How many of a frame's pruning-1 survivors the parallel search keeps for pruning 2, nearest
-// first. Pruning 2 drops a survivor only when an edge from the previous l_pn frames already makes
-// the same jump, so the bound is nearly always settled among the first few; a frame whose kept
-// survivors run out before it is settled is searched again (settle_frame). 16 x 8 bytes a frame.
-constexpr std::size_t kKeptSurvivors = 16;
+// The memory the parallel search may give the survivors it keeps for pruning 2 (kept_survivors).
+constexpr std::size_t kKeptSurvivorBytes = std::size_t{256} << 20;
+// At least this many a frame however long the reference (the bound is nearly always settled among
+// the first few), at most what a frame's count (one byte) holds.
+constexpr std::size_t kMinKeptSurvivors = 16;
+constexpr std::size_t kMaxKeptSurvivors = 255;
+
+}  // namespace
+
+std::size_t kept_survivors(int frames, const GraphParams& params) {
+  if (params.max_transitions <= 0 || frames <= 0) return 0;
+  const std::size_t k = static_cast<std::size_t>(candidate_limit(params));  // survivors are members of K_l
+  const std::size_t budget = kKeptSurvivorBytes / (static_cast<std::size_t>(frames) * sizeof(Candidate));
+  return std::min({k, std::max(budget, kMinKeptSurvivors), kMaxKeptSurvivors});
+}
+
+namespace {
 
 // Every frame's pruning-1 survivors by ascending (float d, r): at most `stride` a frame in fixed
 // slots (and whether the frame had more), or with stride 0 (no bound) every one in a list.
@@ -110,16 +122,18 @@ bool settle_frame(int l, const Candidate* survivors, std::size_t count, bool com
 }  // namespace
 
 std::vector<Transition> continuity_analysis(const PoseFeatures& f, const std::vector<int>& run_end,
-                                            const GraphParams& params, const ContinuityProgress& progress) {
+                                            const GraphParams& params, const ContinuityProgress& progress,
+                                            std::size_t kept) {
   const int n = f.frame_count();
   if (static_cast<int>(run_end.size()) != n) throw Error("continuity_analysis: run_end has the wrong size");
   if (n < 2) return {};
   const std::vector<double> theta = continuity_thresholds(f, run_end, params);
-  return continuity_analysis(neighbours::PoseSpace(f, params), theta, params, progress);
+  return continuity_analysis(neighbours::PoseSpace(f, params), theta, params, progress, kept);
 }
 
 std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const std::vector<double>& theta,
-                                            const GraphParams& params, const ContinuityProgress& progress) {
+                                            const GraphParams& params, const ContinuityProgress& progress,
+                                            std::size_t kept) {
   const int n = space.frames();
   if (static_cast<int>(theta.size()) != n) throw Error("continuity_analysis: theta has the wrong size");
   std::vector<Transition> edges;
@@ -128,7 +142,13 @@ std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const
 
   // 1. Every frame's candidates and pruning 1, in parallel and in the tree's order (each thread
   //    takes a run of neighbouring frames, whose searches read the same part of the tree).
-  Survivors survivors(n, params.max_transitions > 0 ? kKeptSurvivors : 0);
+  if (params.max_transitions <= 0)
+    kept = 0;
+  else if (kept == 0)
+    kept = kept_survivors(n, params);
+  else
+    kept = std::min(kept, kMaxKeptSurvivors);
+  Survivors survivors(n, kept);
   const int workers = candidate_search_workers();
   struct Work {
     CandidateScratch scratch;

@@ -222,6 +222,40 @@ TEST(Neighbours, TheSameBoundedEdgesOnBothSidesOfExactFrames) {
   EXPECT_GT(continuity_analysis(f, one_run(400), unbounded).size(), expected.size());
 }
 
+// The parallel search keeps a frame's first survivors for pruning 2 and searches a frame again when
+// they run out before its bound is settled: the edges are the same however few it keeps (1 makes
+// nearly every frame with two or more edges search again).
+TEST(Neighbours, TheEdgesDoNotDependOnHowManySurvivorsAreKept) {
+  const PoseFeatures f = looping_motion(400, 5);
+  GraphParams p;
+  p.l_pn = 1;
+  p.max_transitions = 2;
+  const auto expected = as_tuples(brute_analysis(f, one_run(400), p));
+  std::vector<int> out_degree(400, 0);
+  for (const auto& [from, to, w] : expected) ++out_degree[static_cast<std::size_t>(from)];
+  ASSERT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "frames must need a second survivor";
+  for (const std::size_t kept : {std::size_t{1}, std::size_t{2}, std::size_t{16}, std::size_t{0}}) {
+    SCOPED_TRACE(kept);
+    EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p, {}, kept)), expected);
+  }
+}
+
+TEST(Neighbours, SurvivorsKeptAreAllOfThemWithin256MiBAndAtLeast16) {
+  GraphParams p;  // max_transitions 4, candidates_per_transition 32: K_l holds at most 128
+  EXPECT_EQ(kept_survivors(12810, p), 128u);
+  // 256 MiB of 8-byte survivors over 838,860 frames: 40.00002 a frame.
+  EXPECT_EQ(kept_survivors(838860, p), 40u);
+  EXPECT_EQ(kept_survivors(2052000, p), 16u);  // 16.35
+  EXPECT_EQ(kept_survivors(100000000, p), 16u);
+  p.max_transitions = 10;  // K_l up to 320: a frame's count is one byte
+  EXPECT_EQ(kept_survivors(1000, p), 255u);
+  p.max_transitions = 1;
+  p.candidates_per_transition = 12;
+  EXPECT_EQ(kept_survivors(1000, p), 12u);
+  p.max_transitions = 0;  // no bound: every survivor, in a list
+  EXPECT_EQ(kept_survivors(1000, p), 0u);
+}
+
 // The approximate search with the default budget finds >= 95% of the exact candidate pairs.
 void expect_recall(const Motion& m) {
   const PoseFeatures f = pose_features(m);
