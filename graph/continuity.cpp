@@ -74,13 +74,18 @@ struct Survivors {
 
 bool nearer(const Candidate& a, const Candidate& b) { return a.d < b.d || (a.d == b.d && a.r < b.r); }
 
+// A frame's pruning-1 survivors of its candidates (into `out`, nearest first).
+void survivors_from(const std::vector<Candidate>& candidates, int l_pn, std::vector<Candidate>& out) {
+  out.clear();
+  prune_runs(candidates, l_pn, out);
+  std::sort(out.begin(), out.end(), nearer);
+}
+
 // One frame's pruning-1 survivors (into `out`, nearest first).
 void survivors_of(const CandidateSearch& search, int l, int l_pn, CandidateScratch& scratch,
                   std::vector<Candidate>& candidates, std::vector<Candidate>& out) {
   search.find(l, scratch, candidates);
-  out.clear();
-  prune_runs(candidates, l_pn, out);
-  std::sort(out.begin(), out.end(), nearer);
+  survivors_from(candidates, l_pn, out);
 }
 
 // Pruning 2 against the edges so far, then at most max_transitions of the survivors, the nearest
@@ -153,17 +158,23 @@ std::vector<Transition> continuity_analysis(neighbours::PoseSpace&& space, const
   struct Work {
     CandidateScratch scratch;
     std::vector<Candidate> candidates, kept;
+    std::vector<CandidateScratch> run_scratch;
+    std::vector<std::vector<Candidate>> run;
   };
   std::vector<Work> work(static_cast<std::size_t>(workers));
   const std::vector<int>& order = search.query_order();
-  constexpr std::size_t kChunk = 512;
+  constexpr std::size_t kChunk = 512, kRun = 64;  // kRun: frames searched at a time (find_run)
   const std::size_t chunks = (static_cast<std::size_t>(n) + kChunk - 1) / kChunk;
   std::atomic<std::size_t> chunks_done{0};
   parallel_for(chunks, workers, [&](std::size_t chunk, int worker) {
     Work& w = work[static_cast<std::size_t>(worker)];
-    for (std::size_t q = chunk * kChunk; q < std::min(static_cast<std::size_t>(n), (chunk + 1) * kChunk); ++q) {
+    const std::size_t chunk_end = std::min(static_cast<std::size_t>(n), (chunk + 1) * kChunk);
+    for (std::size_t q = chunk * kChunk; q < chunk_end; ++q) {
+      const std::size_t i = (q - chunk * kChunk) % kRun;
+      if (i == 0)
+        search.find_run(static_cast<int>(q), static_cast<int>(std::min(kRun, chunk_end - q)), w.run_scratch, w.run);
       const int l = order[q];
-      survivors_of(search, l, params.l_pn, w.scratch, w.candidates, w.kept);
+      survivors_from(w.run[i], params.l_pn, w.kept);
       const std::size_t fl = static_cast<std::size_t>(l);
       if (survivors.stride == 0) {
         survivors.lists[fl] = w.kept;

@@ -58,6 +58,11 @@ void CandidateSearch::find(int l, CandidateScratch& scratch, std::vector<Candida
   tree_->find(l, scratch, out);
 }
 
+void CandidateSearch::find_run(int first, int count, std::vector<CandidateScratch>& scratch,
+                               std::vector<std::vector<Candidate>>& out) const {
+  tree_->find_run(first, count, scratch, out);
+}
+
 float CandidateSearch::error(float d) const { return tree_->space().error(d); }
 
 double CandidateSearch::distance(int l, int r) const { return tree_->space().exact(l, r); }
@@ -70,12 +75,18 @@ std::vector<std::vector<int>> candidate_sets(const PoseFeatures& features, const
   const int n = finder.frames();
   std::vector<std::vector<int>> all(static_cast<std::size_t>(n));
   const int workers = candidate_search_workers();
-  std::vector<CandidateScratch> scratch(static_cast<std::size_t>(workers));
-  std::vector<std::vector<Candidate>> found(static_cast<std::size_t>(workers));
-  parallel_for(static_cast<std::size_t>(n), workers, [&](std::size_t l, int worker) {
-    std::vector<Candidate>& k = found[static_cast<std::size_t>(worker)];
-    finder.find(static_cast<int>(l), scratch[static_cast<std::size_t>(worker)], k);
-    for (const Candidate& c : k) all[l].push_back(c.r);
+  // Runs of the tree's order, as the continuity analysis takes them.
+  constexpr int kRun = 64;
+  std::vector<std::vector<CandidateScratch>> scratch(static_cast<std::size_t>(workers));
+  std::vector<std::vector<std::vector<Candidate>>> found(static_cast<std::size_t>(workers));
+  const std::vector<int>& order = finder.query_order();
+  parallel_for(static_cast<std::size_t>((n + kRun - 1) / kRun), workers, [&](std::size_t run, int worker) {
+    const int first = static_cast<int>(run) * kRun, count = std::min(kRun, n - first);
+    std::vector<std::vector<Candidate>>& k = found[static_cast<std::size_t>(worker)];
+    finder.find_run(first, count, scratch[static_cast<std::size_t>(worker)], k);
+    for (int i = 0; i < count; ++i)
+      for (const Candidate& c : k[static_cast<std::size_t>(i)])
+        all[static_cast<std::size_t>(order[static_cast<std::size_t>(first + i)])].push_back(c.r);
   });
   return all;
 }

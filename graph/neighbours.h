@@ -87,6 +87,11 @@ class CandidateSearch {
   const std::vector<int>& query_order() const;
   // out = K_l by ascending r, each with d(l, r) in single precision.
   void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
+  // out[i] = K_l of frame query_order()[first + i], i < count, as find gives it; the exact search
+  // takes 16 neighbouring frames at a time together, sharing their walk through the tree.
+  // `scratch` is one thread's (grown as needed); out grows to at least count.
+  void find_run(int first, int count, std::vector<CandidateScratch>& scratch,
+                std::vector<std::vector<Candidate>>& out) const;
   // An upper bound of |float d - d| for distances up to d.
   float error(float d) const;
   // d(l, r) in double (graph/features.h).

@@ -28,11 +28,19 @@ class CandidateTree {
   const PoseSpace& space() const { return space_; }
   // K_l by ascending r, with float distances (neighbours.h).
   void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
+  // K_l of the frames in slots first .. first + count - 1 (out[i] for frame order()[first + i]):
+  // with the exact search, kGroup neighbouring frames at a time searched together (find_group);
+  // with a budget, one by one (the budget is each frame's own, and decides what it finds).
+  void find_run(int first, int count, std::vector<CandidateScratch>& scratch,
+                std::vector<std::vector<Candidate>>& out) const;
 
   // Frames per leaf: one block of projections stored dimension by dimension, so that the lower
   // bounds of a leaf's frames are computed as vectors (as many frames at a time as the registers
   // hold), each frame's in the order of PoseSpace::lower_bound_slots.
   static constexpr int kLeaf = 16;
+  // Frames the exact search takes together (find_group): a leaf's worth. 4 and 8 were slower on a
+  // seven-minute reference, 32 and 64 no faster.
+  static constexpr int kGroup = 16;
 
  private:
   struct Node {
@@ -42,6 +50,11 @@ class CandidateTree {
 
   int build(int begin, int end);
   float box_bound(int node, const float* q) const;
+  // Lower bound of d between any frame in node `node`'s box and any in node `other`'s: at most
+  // box_bound(node, q) for every q in `other`'s box (each gap is at most that of q, and the sums
+  // and roots are monotone).
+  float box_box_bound(int node, const float* other_lo, const float* other_hi) const;
+  void find_group(int first, int count, CandidateScratch* scratch, std::vector<Candidate>* out) const;
   // Which frames of the leaf starting at slot `begin` have a lower bound within `radius`: bit i
   // for frame begin + i (bits past the leaf's own frames are meaningless).
   unsigned leaf_within(int begin, const float* q, float radius) const;

@@ -222,6 +222,47 @@ TEST(Neighbours, TheSameBoundedEdgesOnBothSidesOfExactFrames) {
   EXPECT_GT(continuity_analysis(f, one_run(400), unbounded).size(), expected.size());
 }
 
+// The exact search of several neighbouring frames together (find_run) finds for each what its own
+// search finds, for runs that start and end anywhere in the tree's order; so does the budgeted one,
+// which searches them one by one.
+TEST(Neighbours, FramesSearchedTogetherFindWhatEachFindsAlone) {
+  const PoseFeatures f = looping_motion(700, 7);
+  for (const NeighbourSearch search : {NeighbourSearch::Exact, NeighbourSearch::Approximate}) {
+    for (const int max_transitions : {4, 0}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(search)) + " " + std::to_string(max_transitions));
+      GraphParams p;
+      p.l_pn = 2;
+      p.max_transitions = max_transitions;
+      p.candidates_per_transition = 5;
+      p.ann_checks = 64;
+      const std::vector<double> theta = continuity_thresholds(f, one_run(700), p);
+      const CandidateSearch finder(f, theta, p, search);
+      const std::vector<int>& order = finder.query_order();
+      CandidateScratch alone;
+      std::vector<Candidate> expected;
+      std::vector<CandidateScratch> scratch;
+      std::vector<std::vector<Candidate>> together;
+      std::size_t members = 0;
+      for (int first = 0; first < 700;) {
+        const int count = std::min(37, 700 - first);  // runs across the groups of 16
+        finder.find_run(first, count, scratch, together);
+        for (int i = 0; i < count; ++i) {
+          finder.find(order[static_cast<std::size_t>(first + i)], alone, expected);
+          const std::vector<Candidate>& got = together[static_cast<std::size_t>(i)];
+          ASSERT_EQ(got.size(), expected.size()) << "frame " << order[static_cast<std::size_t>(first + i)];
+          for (std::size_t j = 0; j < got.size(); ++j) {
+            EXPECT_EQ(got[j].r, expected[j].r);
+            EXPECT_EQ(got[j].d, expected[j].d);
+          }
+          members += got.size();
+        }
+        first += count;
+      }
+      EXPECT_GT(members, 700u * 3) << "frames must have candidates for the test to mean anything";
+    }
+  }
+}
+
 // The parallel search keeps a frame's first survivors for pruning 2 and searches a frame again when
 // they run out before its bound is settled: the edges are the same however few it keeps (1 makes
 // nearly every frame with two or more edges search again).
