@@ -187,15 +187,28 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
   return in;
 }
 
-ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon,
+// With `alongside`, the motion is read on a second thread while the speech is analysed (a core
+// would otherwise wait: a build of one clip); else the speech first, so that its audio (the larger
+// of the two for long clips) is released before the motion is read. Either way a motion that cannot
+// be opened is reported before the long analysis, and a speech error before a motion error.
+ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon, bool alongside,
                           SmplxBody& out_body, std::vector<std::string>& out_warnings) {
-  // The speech first: its audio (the larger of the two for long clips) is released before the
-  // motion is read. A motion that cannot be opened is still reported before the long analysis.
   check_readable_file(c.motion);
   if (!c.skeleton.empty()) check_readable_file(c.skeleton);
-  const SpeechTimes times = speech_times(c.speech, config.graph);
-  return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
-                     out_warnings);
+  if (!alongside) {
+    const SpeechTimes times = speech_times(c.speech, config.graph);
+    return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
+                       out_warnings);
+  }
+  SpeechTimes times;
+  Motion motion;
+  parallel_for(2, 2, [&](std::size_t part, int) {
+    if (part == 0)
+      times = speech_times(c.speech, config.graph);
+    else
+      motion = motion_read(c.motion, c.skeleton, &out_body);
+  });  // (the error of the lower part first: the speech's)
+  return clip_events(std::move(motion), times, config, lexicon, c.motion, c.speech.audio, out_warnings);
 }
 
 // The graph's body from its clips': the face when every clip has one of the same size (a face
@@ -235,6 +248,9 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   GraphBuild build(config.graph, spill_folder);
   std::vector<SmplxBody> bodies(clips.size());
   const int workers = worker_count(jobs, clips.size());
+  // Cores left over by a wave of clips (one clip on two cores): each clip reads its motion alongside
+  // its speech.
+  const bool alongside = worker_count(jobs) >= 2 * workers && clips.size() <= static_cast<std::size_t>(workers);
   long done = 0;
   // A wave of `workers` clips is read on as many threads, each into its own slot; then they join
   // the graph in order and the next wave is read.
@@ -248,7 +264,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
       std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
       try {
         inputs[i] = naming_memory_errors(clip.motion, "reading the reference clip", [&] {
-          return read_reference(clip, config, lexicon, bodies[first + i], warnings[i]);
+          return read_reference(clip, config, lexicon, alongside, bodies[first + i], warnings[i]);
         });
       } catch (...) {
         error = std::current_exception();

@@ -178,6 +178,36 @@ TEST_F(SynthPipeline, SilentOrShortSpeechIsRefusedUnlessAllowed) {
   EXPECT_EQ(r.motion.frame_count, 12 * 30);
 }
 
+// One clip on two workers reads its motion alongside its speech; on one, after it. The graph is the
+// same, and so is the error when both files are bad: the speech's, as when read one after the other.
+TEST_F(SynthPipeline, MotionReadAlongsideTheSpeechGivesTheSameGraphAndErrors) {
+  const Config cfg;
+  const ReferenceFiles clip{file("ref.bvh"), {file("ref.wav"), file("ref.tsv")}};
+  const MotionGraph one = graph_build_from_files({clip}, cfg, {}, 1);
+  const MotionGraph two = graph_build_from_files({clip}, cfg, {}, 2);
+  ASSERT_EQ(two.frame_count(), one.frame_count());
+  graph_save(file("read_after.gmg"), one);
+  graph_save(file("read_alongside.gmg"), two);
+  EXPECT_EQ(read_file_bytes(file("read_alongside.gmg")), read_file_bytes(file("read_after.gmg")));
+
+  gmg::testing::write_text(file("bad_frames.bvh"), read_file_bytes(file("ref.bvh")) + "not a frame line\n");
+  audio::Audio click;
+  click.sample_rate = 16000;
+  click.samples.assign(160, 0.1f);  // 10 ms: too short to be speech
+  audio::write_wav_pcm16(file("click10.wav"), click);
+  for (const int jobs : {1, 2}) {
+    SCOPED_TRACE(jobs);
+    const std::string both = error_of([&] {
+      graph_build_from_files({{file("bad_frames.bvh"), {file("click10.wav"), ""}}}, cfg, {}, jobs);
+    });
+    EXPECT_NE(both.find("click10.wav: holds 0.01 s of audio"), std::string::npos) << both;
+    const std::string motion = error_of([&] {
+      graph_build_from_files({{file("bad_frames.bvh"), {file("ref.wav"), ""}}}, cfg, {}, jobs);
+    });
+    EXPECT_NE(motion.find("bad_frames.bvh"), std::string::npos) << motion;
+  }
+}
+
 TEST_F(SynthPipeline, ReferenceAudioAndMotionOfDifferentLengthsWarnNamingBoth) {
   // ref.bvh lasts 40 s; test.wav 15 s: a mismatch of 25 s.
   ReferenceFiles clip{file("ref.bvh"), {file("test.wav"), ""}};
