@@ -8,6 +8,7 @@
 #include <exception>
 #include <mutex>
 #include <random>
+#include <thread>
 
 #include "audio/audio_file.h"
 #include "audio/onset.h"
@@ -200,14 +201,27 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
     return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
                        out_warnings);
   }
+  // The speech on a second thread, the motion on this one: the motion's many small allocations stay
+  // in this thread's heap (a second thread's would start a heap of its own and fault its pages in),
+  // the audio's few large arrays are mapped wherever they are made.
   SpeechTimes times;
-  Motion motion;
-  parallel_for(2, 2, [&](std::size_t part, int) {
-    if (part == 0)
+  std::exception_ptr speech_error, motion_error;
+  std::thread speech([&] {
+    try {
       times = speech_times(c.speech, config.graph);
-    else
-      motion = motion_read(c.motion, c.skeleton, &out_body);
-  });  // (the error of the lower part first: the speech's)
+    } catch (...) {
+      speech_error = std::current_exception();
+    }
+  });
+  Motion motion;
+  try {
+    motion = motion_read(c.motion, c.skeleton, &out_body);
+  } catch (...) {
+    motion_error = std::current_exception();
+  }
+  speech.join();
+  if (speech_error) std::rethrow_exception(speech_error);
+  if (motion_error) std::rethrow_exception(motion_error);
   return clip_events(std::move(motion), times, config, lexicon, c.motion, c.speech.audio, out_warnings);
 }
 
