@@ -73,20 +73,7 @@ int CandidateTree::build(int begin, int end) {
 
 // Lower bound of d(l, r) for every r in the node's box; q = l's projections. The gaps are taken
 // sixteen rows at a time, their squares summed in the fixed order of float_lanes.h.
-float CandidateTree::box_bound(int node, const float* q) const {
-  const std::size_t at = static_cast<std::size_t>(node) * kDims;
-  const Sixteen lo = Sixteen::at(lo_.data() + at), hi = Sixteen::at(hi_.data() + at), x = Sixteen::at(q);
-  alignas(64) float g[kDims];
-  Sixteen squares;
-  for (int i = 0; i < Sixteen::kParts; ++i) {
-    const Floats below = lo.part[i] - x.part[i], above = x.part[i] - hi.part[i];
-    Floats gap = below > above ? below : above;
-    gap = gap > Floats{} ? gap : Floats{};
-    squares.part[i] = gap * gap;
-  }
-  squares.store(g);
-  return space_.lambda_pos() * std::sqrt(sum8(g)) + space_.lambda_vel() * std::sqrt(sum8(g + 8));
-}
+float CandidateTree::box_bound(int node, const float* q) const { return box_box_bound(node, q, q); }
 
 float CandidateTree::box_box_bound(int node, const float* other_lo, const float* other_hi) const {
   const std::size_t at = static_cast<std::size_t>(node) * kDims;

@@ -97,6 +97,13 @@ std::vector<std::tuple<int, int, double>> as_tuples(const std::vector<Transition
   return out;
 }
 
+// How many of the n frames have exactly `degree` of the edges (from, to, weight).
+long frames_with_out_degree(const std::vector<std::tuple<int, int, double>>& edges, int n, int degree) {
+  std::vector<int> out_degree(static_cast<std::size_t>(n), 0);
+  for (const auto& [from, to, w] : edges) ++out_degree[static_cast<std::size_t>(from)];
+  return static_cast<long>(std::count(out_degree.begin(), out_degree.end(), degree));
+}
+
 TEST(Neighbours, BothSearchesFindTheCandidatesByDefinition) {
   const PoseFeatures f = looping_motion(500, 11);
   GraphParams p;
@@ -210,9 +217,7 @@ TEST(Neighbours, TheSameBoundedEdgesOnBothSidesOfExactFrames) {
   p.max_transitions = 2;
   p.ann_checks = 0;
   const auto expected = as_tuples(brute_analysis(f, one_run(400), p));
-  std::vector<int> out_degree(400, 0);
-  for (const auto& [from, to, w] : expected) ++out_degree[static_cast<std::size_t>(from)];
-  ASSERT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "the bound must bind";
+  ASSERT_GT(frames_with_out_degree(expected, 400, 2), 20) << "the bound must bind";
   p.exact_frames = 400;  // Auto: the tree searched to the end
   EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p)), expected);
   p.exact_frames = 399;  // Auto: the tree within ann_checks (0 here: also to the end)
@@ -280,9 +285,7 @@ TEST(Neighbours, TheEdgesDoNotDependOnHowManySurvivorsAreKept) {
   p.l_pn = 1;
   p.max_transitions = 2;
   const auto expected = as_tuples(brute_analysis(f, one_run(400), p));
-  std::vector<int> out_degree(400, 0);
-  for (const auto& [from, to, w] : expected) ++out_degree[static_cast<std::size_t>(from)];
-  ASSERT_GT(std::count(out_degree.begin(), out_degree.end(), 2), 20) << "frames must need a second survivor";
+  ASSERT_GT(frames_with_out_degree(expected, 400, 2), 20) << "frames must need a second survivor";
   for (const std::size_t kept : {std::size_t{1}, std::size_t{2}, std::size_t{16}, std::size_t{0}}) {
     SCOPED_TRACE(kept);
     EXPECT_EQ(as_tuples(continuity_analysis(f, one_run(400), p, {}, kept)), expected);
