@@ -190,12 +190,22 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
   return in;
 }
 
-// An audio file up to this size is analysed alongside its motion's reading when a core is free:
-// the two are then held at once (the samples in floats, twice a 16-bit file), 64 MB at most more
-// than one after the other. (A one-hour clip at 16 kHz, 115 MB, peaked 116 MiB higher read alongside.)
-constexpr std::uintmax_t kAlongsideAudioBytes = std::uintmax_t{32} << 20;
+// Files up to this size are read side by side when a core is free: the motion's reading then
+// overlaps the speech's analysis, and the peak grows by the smaller of the two in memory. The
+// limit is on both files, since a file's size says little about its decoded size (a compressed
+// audio file decodes to many times its size): 32 MiB is about 17 minutes of 16 kHz 16-bit WAV, 24
+// of 25-joint BVH. (A one-hour clip, 115 MB of audio and 79 MB of BVH, peaked 116 MiB
+// higher read side by side.)
+constexpr std::uintmax_t kAlongsideFileBytes = std::uintmax_t{32} << 20;
 
-// With `alongside` and an audio file up to kAlongsideAudioBytes, the motion is read on this thread
+// Whether both files exist and are at most kAlongsideFileBytes.
+bool small_enough_alongside(const std::string& a, const std::string& b) {
+  std::error_code error_a, error_b;
+  const std::uintmax_t size_a = std::filesystem::file_size(a, error_a), size_b = std::filesystem::file_size(b, error_b);
+  return !error_a && !error_b && size_a <= kAlongsideFileBytes && size_b <= kAlongsideFileBytes;
+}
+
+// With `alongside` and both files up to kAlongsideFileBytes, the motion is read on this thread
 // while the speech is analysed on a second (a core would otherwise wait: a build of one clip);
 // else the speech first, so that its audio (the larger of the two for long clips) is released
 // before the motion is read. Either way a motion that cannot be opened is reported before the long
@@ -204,9 +214,7 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
                           SmplxBody& out_body, std::vector<std::string>& out_warnings) {
   check_readable_file(c.motion);
   if (!c.skeleton.empty()) check_readable_file(c.skeleton);
-  std::error_code size_error;
-  const std::uintmax_t audio_bytes = std::filesystem::file_size(c.speech.audio, size_error);
-  if (!alongside || size_error || audio_bytes > kAlongsideAudioBytes) {
+  if (!alongside || !small_enough_alongside(c.speech.audio, c.motion)) {
     const SpeechTimes times = speech_times(c.speech, config.graph);
     return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
                        out_warnings);
