@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config git clang-format
   libboost-graph-dev libeigen3-dev libaubio-dev libfftw3-dev libglm-dev libcairo2-dev
   libcli11-dev nlohmann-json3-dev libzip-dev libfast-float-dev libxxhash-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
+  libjemalloc-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
 )
 missing=()
