@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <type_traits>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -29,14 +30,16 @@ namespace {
 constexpr int kSlots = 256;
 constexpr std::size_t kPathBytes = 4096;
 
-// state: 0 free, 1 being filled (skipped by the handler), 2 registered. Every member initialised,
-// so the constructor is constexpr and the table is zeroed memory from the start: with `path` left
-// uninitialised, start-up ran a constructor over all 256 slots, a page fault for each of the 1 MiB's
-// pages in every command.
+// state: 0 free, 1 being filled (skipped by the handler), 2 registered. No member has an
+// initialiser: the table is in static storage, zeroed before the program starts, and a slot with
+// a non-trivial constructor made start-up run it over all 256 slots, a page fault for each of the
+// 1 MiB's pages in every command.
 struct TemporarySlot {
-  std::atomic<int> state{0};
-  char path[kPathBytes] = {};
+  std::atomic<int> state;
+  char path[kPathBytes];
 };
+static_assert(std::is_trivially_default_constructible_v<TemporarySlot>,
+              "the slots are zeroed static storage: no constructor to run at start-up");
 TemporarySlot g_temporaries[kSlots];
 
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
