@@ -9,7 +9,8 @@
 // transitions and mean out-degree (`gmg inspect --json`). Lengths over 1 h are written as clips of
 // at most 1 h (seeds 3, 4, 5, ...) and built with `gmg build --clips`. Under the table: the growth
 // exponent of the build's CPU time and of the edges between the shortest and the longest length
-// (1 = linear), and the out-degree of the longest over the shortest.
+// (1 = linear), the out-degree of the longest over the shortest, and what its growth is made of:
+// the share of frames with a transition, and the transitions of each such frame.
 // --cliff builds 14,970 and 15,030 frames (either side of the default exact_frames) and prints
 // their transitions. --reenact also reenacts 77 s of synthetic speech (seed 99) from each graph.
 #include <sys/resource.h>
@@ -46,6 +47,7 @@ double json_number(const std::string& json, const std::string& key) {
 struct Row {
   double seconds = 0;
   double frames = 0, edges = 0, degree = 0, file_mb = 0;
+  double share = 0;  // of the frames with at least one transition
   std::vector<double> wall, cpu, rss;
   CommandRun reenact;
 };
@@ -84,6 +86,7 @@ Row measure(const std::string& dir, double seconds, int joints, int runs, bool r
   row.frames = json_number(json.str(), "frames");
   row.edges = json_number(json.str(), "unnatural_edges");
   row.degree = json_number(json.str(), "mean_out_degree");
+  row.share = json_number(json.str(), "share_with_transition");
   row.file_mb = static_cast<double>(std::filesystem::file_size(graph)) / (1024.0 * 1024.0);
   if (reenact) {
     if (!std::filesystem::exists(dir + "/t77.wav"))
@@ -150,6 +153,11 @@ int main(int argc, char** argv) {
         "mean out-degree %.2f x the shortest's\n",
         a.frames, b.frames, std::log(median(b.cpu) / median(a.cpu)) / span, std::log(b.edges / a.edges) / span,
         b.degree / a.degree);
+    // The out-degree's growth split: more frames with a transition at all, or more transitions for
+    // those that have one (at most max_transitions).
+    auto per_frame = [](const Row& r) { return r.edges / (r.frames * r.share); };
+    std::printf("frames with a transition: %.1f %% and %.1f %%; transitions of each: %.2f and %.2f (%.2f x)\n",
+                100.0 * a.share, 100.0 * b.share, per_frame(a), per_frame(b), per_frame(b) / per_frame(a));
   }
   if (cliff) {
     std::printf("\neither side of exact_frames (15,000):\n");
