@@ -64,17 +64,17 @@ FeatureStore::FeatureStore(int dims, const std::string& spill_folder, std::size_
 void FeatureStore::add_clip(const PoseFeatures& clip) {
   if (clip.positions.rows() != dims_) throw Error("FeatureStore: a clip with another joint count");
   if (clip.frame_count() < 2) throw Error("FeatureStore: a clip needs at least 2 frames");
-  starts_.push_back(frames_);
   spill_.append(clip.positions.data(), static_cast<std::size_t>(clip.positions.size()) * sizeof(double));
+  const std::size_t first = static_cast<std::size_t>(frames_);
   frames_ += clip.frame_count();
+  starts_.resize((static_cast<std::size_t>(frames_) + 63) / 64, 0);
+  starts_[first >> 6] |= std::uint64_t{1} << (first & 63);
 }
 
 void FeatureStore::finish() {
   bytes_ = spill_.finish();
   positions_ = reinterpret_cast<const double*>(bytes_.data);
 }
-
-bool FeatureStore::clip_start(int f) const { return std::binary_search(starts_.begin(), starts_.end(), f); }
 
 std::unique_ptr<FeatureStore> FeatureStore::of(const PoseFeatures& f) {
   const int n = f.frame_count();

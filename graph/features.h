@@ -1,6 +1,7 @@
 // Pose features and the pose distance d_pose (paper 4.1.2; SPEC "Motion representation").
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,7 +61,11 @@ class FeatureStore {
 
   int frame_count() const { return frames_; }
   int dims() const { return dims_; }
-  bool clip_start(int f) const;
+  // Whether frame f (0 <= f < frame_count()) starts a clip.
+  bool clip_start(int f) const {
+    const std::size_t i = static_cast<std::size_t>(f);
+    return (starts_[i >> 6] >> (i & 63)) & 1u;
+  }
   const double* position(int f) const {
     return positions_ + static_cast<std::size_t>(f) * static_cast<std::size_t>(dims_);
   }
@@ -75,7 +80,9 @@ class FeatureStore {
  private:
   int dims_;
   int frames_ = 0;
-  std::vector<int> starts_;  // clip starts, ascending
+  // Bit f set when frame f starts a clip (a bit a frame: every distance asks it twice, and a
+  // search over clips' starts grew with their count).
+  std::vector<std::uint64_t> starts_;
   SpillFile spill_;
   SpillFile::Bytes bytes_;
   const double* positions_ = nullptr;

@@ -2,9 +2,11 @@
 // (graph/features.h): single-precision distances summed in one fixed order whatever the vector
 // width, within their stated error of d, projections that bound d from below, and distances in
 // double that are pose_distance's bit for bit.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -90,6 +92,28 @@ TEST(FeatureStore, DistanceIsPoseDistanceBitForBitAcrossClips) {
       // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): the bits are what is compared
       EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << l << " " << r;
     }
+}
+
+// Clips of 63, 2, 64, 1... frames: starts on both sides of each 64-frame word and at its last bit.
+TEST(FeatureStore, KnowsEveryClipStartAndNoOtherFrame) {
+  const std::vector<int> lengths = {63, 2, 64, 3, 60, 129, 2};
+  FeatureStore store(4);
+  std::vector<int> starts;
+  int frames = 0;
+  for (std::size_t c = 0; c < lengths.size(); ++c) {
+    starts.push_back(frames);
+    store.add_clip(random_features(4, lengths[c], static_cast<unsigned>(c)));
+    frames += lengths[c];
+  }
+  store.finish();
+  ASSERT_EQ(store.frame_count(), 323);
+  // 0, 63, 65, 129, 132, 192, 321: frames 63 and 192 are the last bit of a word and the first.
+  EXPECT_EQ(starts, (std::vector<int>{0, 63, 65, 129, 132, 192, 321}));
+  for (int f = 0; f < frames; ++f) {
+    const bool start = std::find(starts.begin(), starts.end(), f) != starts.end();
+    EXPECT_EQ(store.clip_start(f), start) << f;
+    EXPECT_EQ(store.velocity_frames(f), start ? std::pair(f + 1, f) : std::pair(f, f - 1)) << f;
+  }
 }
 
 TEST(FeatureStore, RefusesVelocitiesThatAreNotPositionDifferences) {
