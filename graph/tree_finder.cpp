@@ -274,9 +274,11 @@ void CandidateTree::descend(int l, const float* q, double theta, Gathered& g, Ca
     }
     if (node->left >= 0) continue;
     checks += node->end - node->begin;
-    // The leaf's frames within reach, as bits (most are not).
-    for (unsigned within = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
-         within != 0; within &= within - 1)
+    // The leaf's frames within reach, as bits (most are not), their rows asked for before any is read.
+    const unsigned bits = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
+    for (unsigned within = bits; within != 0; within &= within - 1)
+      space_.prefetch(order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))]);
+    for (unsigned within = bits; within != 0; within &= within - 1)
       take(l, order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))], theta, g, s);
     if (max_checks_ > 0 && checks >= max_checks_) break;
   }
