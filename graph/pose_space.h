@@ -75,8 +75,8 @@ class PoseSpace {
     sv.store(v);
     return lp_ * std::sqrt(sum16(p)) + lv_ * std::sqrt(sum16(v));
   }
-  // Asks for the rows approx(l, r) reads of frame r (its positions and the previous frame's, the
-  // velocity's other frame but at a clip start) to be brought into cache: a leaf's frames lie
+  // Asks for the rows approx(l, r) reads of frame r to be brought into cache: its positions and
+  // the previous frame's (its velocity's other frame, except at a clip start): a leaf's frames lie
   // across the whole reference in frame order, and fetching them all before the first approx
   // overlaps their misses instead of waiting for each in turn.
   void prefetch(int r) const {

@@ -94,7 +94,8 @@ TEST(FeatureStore, DistanceIsPoseDistanceBitForBitAcrossClips) {
     }
 }
 
-// Clips of 63, 2, 64, 1... frames: starts on both sides of each 64-frame word and at its last bit.
+// Clips of 63, 2, 64, 3, 60, 129 and 2 frames: starts at the last bit of a 64-frame word, at the
+// first, and inside words, in clips shorter and longer than a word.
 TEST(FeatureStore, KnowsEveryClipStartAndNoOtherFrame) {
   const std::vector<int> lengths = {63, 2, 64, 3, 60, 129, 2};
   FeatureStore store(4);
