@@ -156,8 +156,9 @@ int main(int argc, char** argv) {
     // The out-degree's growth split: more frames with a transition at all, or more transitions for
     // those that have one (at most max_transitions).
     auto per_frame = [](const Row& r) { return r.edges / (r.frames * r.share); };
-    std::printf("frames with a transition: %.1f %% and %.1f %%; transitions of each: %.2f and %.2f (%.2f x)\n",
-                100.0 * a.share, 100.0 * b.share, per_frame(a), per_frame(b), per_frame(b) / per_frame(a));
+    if (a.share > 0 && b.share > 0)
+      std::printf("frames with a transition: %.1f %% and %.1f %%; transitions of each: %.2f and %.2f (%.2f x)\n",
+                  100.0 * a.share, 100.0 * b.share, per_frame(a), per_frame(b), per_frame(b) / per_frame(a));
   }
   if (cliff) {
     std::printf("\neither side of exact_frames (15,000):\n");
