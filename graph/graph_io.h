@@ -1,6 +1,7 @@
 // Saving and loading built graphs (a versioned binary file with a checksum, "GMGRAPH" magic).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -12,9 +13,11 @@ namespace gmg {
 // features, 4 aligned arrays read in place, 5 the SMPL-X body (shape, per-frame face), 6 the
 // reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h),
 // 7 the XXH3 checksum (engine/core/checksum.h) and the motion last, with a checksum per block of
-// frames, 8 the key poses' sketch (graph/key_poses.h). Files of format 7 are still read (without
-// a sketch: a reenactment from them gives the same motion, computing more junction costs).
-constexpr std::uint32_t kGraphFormatVersion = 8;
+// frames, 8 the key poses' sketch (graph/key_poses.h), 9 the key poses after the part the file's
+// checksum covers, with a checksum per key (checked when read: graph_check_key_poses). Files of
+// formats 7 and 8 are still read (7 without a sketch: a reenactment from them gives the same
+// motion, computing more junction costs; 7 and 8 have their key poses checked by every load).
+constexpr std::uint32_t kGraphFormatVersion = 9;
 constexpr std::uint32_t kOldestGraphFormatRead = 7;
 
 // Writes atomically, in format `version` (kOldestGraphFormatRead to kGraphFormatVersion: 7 leaves
@@ -22,11 +25,14 @@ constexpr std::uint32_t kOldestGraphFormatRead = 7;
 // cannot be written or for a version it does not write.
 void graph_save(const std::string& path, const MotionGraph& g, std::uint32_t version = kGraphFormatVersion);
 
-// When the motion's values are checked (the rest of the file is checked by every load).
+// When the motion's values and the key poses are checked (the rest of the file is checked by every
+// load).
 enum class MotionCheck {
-  OnLoad,  // all of it, by the load
-  OnUse,   // a block of frames at a time, by graph_check_frames before they are read: a load that
-           // reads the motion only where it is played (a reenactment from a long reference)
+  OnLoad,  // all of them, by the load
+  OnUse,   // a block of frames at a time, by graph_check_frames, and a key pose at a time, by
+           // graph_check_key_poses, before they are read: a load that reads the motion only where it
+           // is played and the key poses only where they are ranked (a reenactment from a long
+           // reference)
 };
 
 // Rejects a file of another format or version, a truncated or damaged one, with a gmg::Error
@@ -44,7 +50,14 @@ MotionGraph graph_load(const std::string& path, MotionCheck motion = MotionCheck
 // a unit rotation. Safe to call from several threads.
 void graph_check_frames(const MotionGraph& g, int first, int last);
 
-// The same for a file's bytes already in memory; `path` labels errors.
+// Checks the junction poses of key nodes first .. last (indices into the graph's key frames,
+// clamped to them) of a graph loaded with MotionCheck::OnUse from a file of format 9, those not
+// checked before; nothing for any other graph. Throws gmg::Error naming the file when a key's
+// checksum is wrong ("damaged") or its pose holds a value that is not finite. Safe to call from
+// several threads.
+void graph_check_key_poses(const MotionGraph& g, std::size_t first, std::size_t last);
+
+// graph_load (MotionCheck::OnLoad) of a file's bytes already in memory; `path` labels errors.
 MotionGraph graph_parse(const std::string& bytes, const std::string& path);
 
 // GraphViz DOT and GraphML (Boost's writers) of frames [from, to) (graph_export.cpp). Throws

@@ -73,6 +73,18 @@ struct MotionBlocks {
   std::vector<std::uint8_t> checked;  // 1 once the block was found sound
 };
 
+// The key poses of a graph served from its file (format 9) and loaded with MotionCheck::OnUse: each
+// key's junction pose is checked, against its checksum in the file and for finite values, when first
+// read (graph_check_key_poses), so a reenactment reads only the poses its ranking asks for (a
+// sample's few ten thousand of a long reference's keys, not all of them at every load). Shared by
+// the copies of the graph; the mutex guards `checked`.
+struct KeyPoseChecks {
+  std::string path;                 // the graph file, for errors
+  std::vector<std::uint64_t> sums;  // each key's checksum: its junction_pose_dims values
+  std::mutex mutex;
+  std::vector<std::uint8_t> checked;  // 1 once the key's pose was found sound
+};
+
 // A sketch of every key pose (graph/key_poses.h key_pose_sketch): its coordinates along the first
 // `axes` principal axes of the key poses' positions and as many of their velocities. The distance
 // between two sketches is at most that between the poses (the axes are orthonormal), so a planning
@@ -133,6 +145,9 @@ struct MotionGraph {
   // Set for a graph loaded with MotionCheck::OnUse: the motion blocks not yet checked. Null when
   // every frame is checked (a built graph, one loaded with MotionCheck::OnLoad).
   std::shared_ptr<MotionBlocks> unchecked_motion;
+  // The same for the key poses (format 9 and MotionCheck::OnUse): the keys not yet checked. Null
+  // when every key pose is checked.
+  std::shared_ptr<KeyPoseChecks> unchecked_key_poses;
 
   // Throws gmg::Error "FILE: changed while in use" when the file this graph is served from was
   // truncated or written to since it was loaded (its arrays may then hold zeros or other values):

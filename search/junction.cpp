@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "graph/graph_io.h"
 #include "graph/key_poses.h"
 #include "graph/reference_facts.h"
 
@@ -21,9 +22,11 @@ JunctionCost::Pose JunctionCost::features(int f) {
   // A key node's pose is in the graph (the same values junction_pose gives, computed when it was
   // built), so ranking the key nodes does not read the motion.
   const auto key = std::lower_bound(keys_.begin(), keys_.end(), f);
-  if (key != keys_.end() && *key == f)
-    return Pose(g_.key_poses.data() + static_cast<std::size_t>(key - keys_.begin()) * static_cast<std::size_t>(dims),
-                dims);
+  if (key != keys_.end() && *key == f) {
+    const std::size_t k = static_cast<std::size_t>(key - keys_.begin());
+    graph_check_key_poses(g_, k, k);  // served from the file: checked when first read
+    return Pose(g_.key_poses.data() + k * static_cast<std::size_t>(dims), dims);
+  }
   auto hit = cache_.find(f);
   if (hit == cache_.end()) hit = cache_.emplace(f, junction_pose(g_, f)).first;
   return Pose(hit->second.data(), hit->second.size());
@@ -100,6 +103,7 @@ void JunctionCost::key_costs(int c, const std::vector<std::size_t>& keys, std::v
     std::size_t to = from + 1;
     while (to < keys.size() && keys[to] == keys[to - 1] + 1) ++to;
     const Eigen::Index run = static_cast<Eigen::Index>(to - from);
+    graph_check_key_poses(g_, keys[from], keys[to - 1]);
     const double* base = g_.key_poses.data() + keys[from] * static_cast<std::size_t>(2 * d);
     // Up to 64 columns at a time into norms on the stack (a run of a sample's block, or a piece of
     // a longer run): no allocation per run.

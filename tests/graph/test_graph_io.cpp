@@ -152,14 +152,14 @@ TEST(GraphIo, SaveLoadRoundTrip) {
 // The SMPL-X body (shape and per-frame face; format 5 on) is the section before the motion, empty
 // for a graph of BVH references: both load exactly, the payloads agree up to the body, and the face
 // starts on a page boundary like the other large arrays. The motion is the last section (format 7):
-// frames per block and each block's checksum, where the file's checksum stops, then the rotations
-// and the translations, each on a page boundary.
+// frames per block and each block's checksum, where the file's checksum stops, then (format 9) the
+// key poses, the rotations and the translations, each on a page boundary.
 TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 8);
+  EXPECT_EQ(plain[8], 9);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -170,7 +170,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 8);
+  EXPECT_EQ(bytes[8], 9);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -203,7 +203,8 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   };
   // The motion from `at` on: 64 frames a block, the blocks' count and checksums (each that of
   // its frames' rotations, then their translations), the end of what the file's checksum covers
-  // (the header's last field); then each array's count, padding and values; then the checksum.
+  // (the header's last field); then the key poses', the rotations' and the translations' count,
+  // padding and values; then the checksum.
   auto expect_motion_at = [&](const std::string& file, std::size_t at) {
     ASSERT_LT(at + 12, file.size());
     EXPECT_EQ(file.compare(at, 4, std::string("\x40\0\0\0", 4)), 0);
@@ -219,8 +220,13 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
     const std::size_t summed_end = at + 12 + 8 * blocks;
     EXPECT_EQ(u64_at(file, 20), summed_end - kHeader);
     EXPECT_EQ(u64_at(file, file.size() - 8), checksum_of(file.data() + kHeader, summed_end - kHeader));
-    EXPECT_EQ(u64_at(file, summed_end), frames * joints);
-    const std::size_t rotations_at = (summed_end + 8 + 4095) / 4096 * 4096;
+    ASSERT_GT(g.key_poses.size(), 0u);
+    EXPECT_EQ(u64_at(file, summed_end), g.key_poses.size());
+    const std::size_t keys_at = (summed_end + 8 + 4095) / 4096 * 4096;
+    const std::string keys = bytes_of(g.key_poses.data(), g.key_poses.size() * sizeof(double));
+    EXPECT_EQ(file.compare(keys_at, keys.size(), keys), 0);
+    EXPECT_EQ(u64_at(file, keys_at + keys.size()), frames * joints);
+    const std::size_t rotations_at = (keys_at + keys.size() + 8 + 4095) / 4096 * 4096;
     const std::string rotations = bytes_of(g.motion.rotations.data(), frames * joints * sizeof(glm::dquat));
     EXPECT_EQ(file.compare(rotations_at, rotations.size(), rotations), 0);
     const std::size_t count_at = rotations_at + rotations.size();
@@ -293,6 +299,76 @@ TEST(GraphIo, MotionCheckedOnUseIsCheckedBlockByBlock) {
   EXPECT_EQ(graph_load(path, MotionCheck::OnUse).unchecked_motion, nullptr);
 }
 
+// Format 9 keeps the key poses after the part the file's checksum covers, with a checksum per key
+// in it. MotionCheck::OnLoad checks them all; MotionCheck::OnUse leaves each to
+// graph_check_key_poses, which checks the keys a range asks for, once each, and names the file,
+// the key and its frame: a value that is not finite behind a valid checksum, or a byte changed in
+// the file, which no load notices until the key is read.
+TEST(GraphIo, KeyPosesCheckedOnUseAreCheckedKeyByKey) {
+  gmg::testing::TempDir dir;
+  const std::string path = dir.file("keys.gmg");
+  MotionGraph g = legged_graph();
+  const std::size_t dims = static_cast<std::size_t>(junction_pose_dims(g.motion.skeleton));
+  const std::size_t keys = g.keys.size();
+  ASSERT_GE(keys, 4u);
+  ASSERT_EQ(g.key_poses.size(), keys * dims);
+  const std::size_t bad = 2;
+  const std::string where = "the junction pose of key node 2 (frame " + std::to_string(g.keys[bad]) + ")";
+  MotionGraph nan_pose = g;
+  nan_pose.key_poses[bad * dims + 5] = std::numeric_limits<double>::quiet_NaN();
+  graph_save(path, nan_pose);
+  const std::string load_error = gmg::testing::error_of([&] { graph_load(path); });
+  EXPECT_NE(load_error.find("keys.gmg: byte "), std::string::npos) << load_error;
+  EXPECT_NE(load_error.find(where + " holds a value that is not finite"), std::string::npos) << load_error;
+
+  const MotionGraph h = graph_load(path, MotionCheck::OnUse);
+  ASSERT_NE(h.unchecked_key_poses, nullptr);
+  EXPECT_EQ(h.unchecked_key_poses->checked, std::vector<std::uint8_t>(keys, 0));
+  graph_check_key_poses(h, 0, 1);
+  std::vector<std::uint8_t> expected(keys, 0);
+  expected[0] = expected[1] = 1;
+  EXPECT_EQ(h.unchecked_key_poses->checked, expected);
+  graph_check_key_poses(h, 3, keys + 10);  // clamped to the keys
+  for (std::size_t k = 3; k < keys; ++k) expected[k] = 1;
+  EXPECT_EQ(h.unchecked_key_poses->checked, expected);
+  const std::string not_finite = path + ": damaged graph file: " + where + " holds a value that is not finite";
+  EXPECT_EQ(gmg::testing::error_of([&] { graph_check_key_poses(h, 1, 2); }), not_finite);
+  EXPECT_EQ(gmg::testing::error_of([&] { graph_check_key_poses(h, 2, 2); }), not_finite);
+  EXPECT_EQ(h.unchecked_key_poses->checked, expected);
+
+  // A byte changed among a key's pose in the file: its own checksum says so, the file's does not.
+  graph_save(path, g);
+  std::string bytes = read_file_bytes(path);
+  const std::string pose(reinterpret_cast<const char*>(g.key_poses.data() + bad * dims), dims * sizeof(double));
+  const std::size_t at = bytes.find(pose);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 17] = static_cast<char>(bytes[at + 17] ^ 0x01);
+  gmg::testing::write_text(path, bytes);
+  const std::string damaged = gmg::testing::error_of([&] { graph_load(path); });
+  EXPECT_EQ(damaged, path + ": graph file is damaged (checksum mismatch)");
+  const MotionGraph d = graph_load(path, MotionCheck::OnUse);
+  graph_check_key_poses(d, 0, 1);
+  EXPECT_EQ(gmg::testing::error_of([&] { graph_check_key_poses(d, 0, keys - 1); }),
+            path + ": graph file is damaged (checksum mismatch in " + where + ")");
+
+  // A sound file loaded whole, a graph built in memory and a file of format 8 (its key poses under
+  // the file's checksum, checked by every load) leave nothing to check, and read the same poses.
+  graph_save(path, g);
+  const MotionGraph whole = graph_load(path);
+  EXPECT_EQ(whole.unchecked_key_poses, nullptr);
+  EXPECT_EQ(whole.key_poses, g.key_poses);
+  EXPECT_EQ(g.unchecked_key_poses, nullptr);
+  graph_check_key_poses(g, 0, keys - 1);
+  graph_save(path, g, 8);
+  const MotionGraph eight = graph_load(path, MotionCheck::OnUse);
+  EXPECT_EQ(eight.unchecked_key_poses, nullptr);
+  EXPECT_EQ(eight.key_poses, g.key_poses);
+  graph_save(path, nan_pose, 8);
+  EXPECT_NE(
+      gmg::testing::error_of([&] { graph_load(path, MotionCheck::OnUse); }).find("a key pose value is not finite"),
+      std::string::npos);
+}
+
 TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   const MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
@@ -312,19 +388,24 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   };
   expect_error("HIERARCHY\nROOT x", "not a gmg graph file");
   expect_error(bytes.substr(0, bytes.size() / 2), "truncated");
+  // A byte changed in the part the file's checksum covers, or anywhere (here the middle, in the
+  // padding before the key poses, which follow the checksummed part).
   std::string flipped = bytes;
-  flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x40);
+  flipped[40] = static_cast<char>(flipped[40] ^ 0x40);
   expect_error(flipped, "checksum");
+  flipped = bytes;
+  flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x40);
+  expect_error(flipped, "damaged");
   std::string version = bytes;
-  version[8] = 9;
-  expect_error(version, "version 9");
+  version[8] = 10;
+  expect_error(version, "version 10");
   // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
   // facts; 6: another checksum) are refused before anything else is read, with the advice to
   // rebuild them.
   for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads versions 7 to 8: rebuild it with 'gmg build'");
+                              ", this gmg reads versions 7 to 9: rebuild it with 'gmg build'");
   }
 }
 
@@ -433,11 +514,11 @@ TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
   EXPECT_EQ(h.key_poses, g.key_poses);
   EXPECT_EQ(h.motion.rotations, g.motion.rotations);
   EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
-  graph_save(dir.file("g8.gmg"), g);
+  graph_save(dir.file("g8.gmg"), g, 8);
   EXPECT_EQ(read_file_bytes(dir.file("g8.gmg"))[8], 8);
   EXPECT_GT(read_file_bytes(dir.file("g8.gmg")).size(), bytes.size());
   EXPECT_THROW(graph_save(dir.file("g6.gmg"), g, 6), Error);
-  EXPECT_THROW(graph_save(dir.file("g9.gmg"), g, 9), Error);
+  EXPECT_THROW(graph_save(dir.file("g10.gmg"), g, 10), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("g6.gmg")));
 }
 

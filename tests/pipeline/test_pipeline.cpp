@@ -259,12 +259,14 @@ TEST_F(SynthPipeline, AReenactmentChecksAndReadsOnlyTheMotionItPlays) {
   ASSERT_LT(played, static_cast<long>(checked.size())) << "the reenactment played every block: no test";
 
   // The motion's place in the file (graph/graph_io.cpp): after the part the checksum covers (the
-  // header's last field), each array's u64 count, zero padding to a page boundary, its values.
+  // header's last field), each array's u64 count, zero padding to a page boundary, its values: the
+  // key poses', then the rotations' and the translations'.
   std::string bytes = read_file_bytes(file("ref.gmg"));
   std::uint64_t summed = 0;
   std::memcpy(&summed, bytes.data() + 20, 8);
   const std::size_t joints = g.motion.skeleton.joints.size(), frames = static_cast<std::size_t>(g.frame_count());
-  const std::size_t rotations_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t keys_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t rotations_at = (keys_at + g.key_poses.size() * 8 + 8 + 4095) / 4096 * 4096;
   const std::size_t translations_at = (rotations_at + frames * joints * 32 + 8 + 4095) / 4096 * 4096;
   ASSERT_EQ(bytes.size(), translations_at + frames * joints * 24 + 8);
   auto poison = [&](std::string& file_bytes, std::size_t block) {
@@ -306,6 +308,48 @@ TEST_F(SynthPipeline, AReenactmentChecksAndReadsOnlyTheMotionItPlays) {
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("checksum mismatch in frames " + frames_named), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(file("played.bvh")));
+}
+
+// The same for the key poses (format 9): a reenactment checks the junction poses of the key nodes
+// its ranking reads (search/junction.h; which ones, JunctionCost's tests), and a NaN pose of a key
+// it ranks, which no load of a reenactment reads, stops `gmg reenact` with the file, the key node
+// and its frame named, and writes nothing.
+TEST_F(SynthPipeline, AReenactmentChecksTheKeyPosesItRanks) {
+  Config cfg;
+  const MotionGraph g = graph_load(file("ref.gmg"), MotionCheck::OnUse);
+  ASSERT_NE(g.unchecked_key_poses, nullptr);
+  const SpeechEvents ev =
+      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const std::string intact = bvh_format(reenact_events(g, ev, cfg).motion);
+  const std::vector<std::uint8_t> checked = g.unchecked_key_poses->checked;
+  const std::size_t ranked =
+      static_cast<std::size_t>(std::find(checked.begin(), checked.end(), std::uint8_t{1}) - checked.begin());
+  ASSERT_LT(ranked, checked.size());
+
+  // The key poses' place in the file (graph/graph_io.cpp): after the part the checksum covers.
+  std::string bytes = read_file_bytes(file("ref.gmg"));
+  std::uint64_t summed = 0;
+  std::memcpy(&summed, bytes.data() + 20, 8);
+  const std::size_t keys_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t dims = g.key_poses.size() / checked.size();
+  ASSERT_EQ(bytes.compare(keys_at, g.key_poses.size() * 8,
+                          std::string(reinterpret_cast<const char*>(g.key_poses.data()), g.key_poses.size() * 8)),
+            0);
+  bytes.replace(keys_at + ranked * dims * 8, dims * 8, dims * 8, '\xff');
+  write_text(file("ranked.gmg"), bytes);
+  EXPECT_NE(graph_load(file("ranked.gmg"), MotionCheck::OnUse).unchecked_key_poses, nullptr);
+  EXPECT_EQ(error_of([&] { graph_load(file("ranked.gmg")); }),
+            file("ranked.gmg") + ": graph file is damaged (checksum mismatch)");
+  const std::string named = "checksum mismatch in the junction pose of key node " + std::to_string(ranked) +
+                            " (frame " + std::to_string(g.keys[ranked]) + ")";
+  EXPECT_EQ(error_of([&] { reenact_events(graph_load(file("ranked.gmg"), MotionCheck::OnUse), ev, cfg); }),
+            file("ranked.gmg") + ": graph file is damaged (" + named + ")");
+  const CliRun r = run_gmg({"reenact", "--graph", file("ranked.gmg"), "--audio", file("test.wav"), "--transcript",
+                            file("test.tsv"), "-o", file("ranked.bvh")});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(file("ranked.bvh")));
+  EXPECT_FALSE(intact.empty());
 }
 
 TEST(PipelineRealData, ReenactsBeat2AndZeggsSpeechFromScottsGraph) {

@@ -5,10 +5,14 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "graph/graph_builder.h"
+#include "graph/graph_io.h"
 #include "graph/key_poses.h"
 #include "search/junction.h"
 #include "search/planner.h"
+#include "tests/test_support.h"
 
 namespace gmg {
 namespace {
@@ -117,6 +121,51 @@ TEST(Junction, KeyCostsReadInPlaceEqualTheBatch) {
     for (std::size_t m = 0; m < some.size(); ++m) EXPECT_EQ(strided[m], batch[some[m]]) << "key " << some[m];
   }
 }
+// The key poses of a graph served from its file (format 9, MotionCheck::OnUse) are checked as they
+// are read: key_costs checks the keys it is asked for and no other, a key node's own pose is checked
+// when it is the frame the output is at, and a pose whose bytes changed in the file throws, naming
+// the file and the key, where it is read.
+TEST(Junction, KeyCostsOfAServedGraphCheckTheKeysTheyRead) {
+  std::vector<double> angle(120);
+  for (int f = 0; f < 120; ++f) angle[static_cast<std::size_t>(f)] = 0.03 * f + 0.4 * std::sin(0.2 * f);
+  MotionGraph g = posed_graph(angle, {5, 17, 30, 44, 58, 61, 80, 95, 101}, {119}, {{5, 80, 2.0}});
+  g.key_poses = key_junction_poses(g);
+  const std::size_t keys = g.key_frames().size(), dims = g.key_poses.size() / keys;
+  gmg::testing::TempDir dir;
+  const std::string path = dir.file("posed.gmg");
+  graph_save(path, g);
+  {
+    const MotionGraph h = graph_load(path, MotionCheck::OnUse);
+    ASSERT_NE(h.unchecked_key_poses, nullptr);
+    JunctionCost j(h);
+    std::vector<double> out;
+    j.key_costs(33, {1, 2, 3, 6}, out);  // 33 is not a key node
+    EXPECT_EQ(h.unchecked_key_poses->checked, std::vector<std::uint8_t>({0, 1, 1, 1, 0, 0, 1, 0, 0, 0}));
+    j.key_costs(17, {8}, out);  // 17 is key node 1; 101 key node 8
+    EXPECT_EQ(h.unchecked_key_poses->checked, std::vector<std::uint8_t>({0, 1, 1, 1, 0, 0, 1, 0, 1, 0}));
+    EXPECT_GT(j.cost(58, 33), 0.0);  // 58 is key node 4
+    EXPECT_EQ(h.unchecked_key_poses->checked, std::vector<std::uint8_t>({0, 1, 1, 1, 1, 0, 1, 0, 1, 0}));
+    ASSERT_EQ(keys, 10u);
+  }
+  std::string bytes = read_file_bytes(path);
+  const std::string pose(reinterpret_cast<const char*>(g.key_poses.data() + 7 * dims), dims * sizeof(double));
+  const std::size_t at = bytes.find(pose);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at] = static_cast<char>(bytes[at] ^ 0x10);
+  gmg::testing::write_text(path, bytes);
+  const MotionGraph h = graph_load(path, MotionCheck::OnUse);
+  JunctionCost j(h);
+  std::vector<double> out;
+  j.key_costs(33, {5, 6, 8, 9}, out);
+  try {
+    j.key_costs(33, {6, 7, 8}, out);
+    ADD_FAILURE() << "a damaged key pose was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path + ": graph file is damaged (checksum mismatch in the junction pose of key node 7 (frame 95))");
+  }
+}
+
 // A chain of six joints whose every joint turns about two axes with its own slow waves: poses of
 // 36 values (18 positions, 18 velocities), more than the sketch's 8 axes per part. Onsets every
 // `every` frames, one break at the end, a few transitions.
