@@ -197,7 +197,7 @@ MotionGraph GraphBuild::finish(const BuildProgress& progress) {
   if (progress) analysed = [&](int done, int frames) { progress("analyse", done, frames); };
   const std::vector<Transition> transitions = continuity_analysis(std::move(*s.space), s.theta, s.params, analysed);
   for (const Transition& t : transitions) builder.add_edge(t.from, t.to, EdgeInfo{t.weight});
-  g.graph = builder.finish();
+  builder.finish(g);
   add_reference_facts(g);
   return g;
 }

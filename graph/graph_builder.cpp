@@ -22,7 +22,7 @@ void GraphBuilder::add_edge(int from, int to, const EdgeInfo& info) {
   info_.push_back(info);
 }
 
-GraphStorage GraphBuilder::finish() {
+void GraphBuilder::finish(MotionGraph& out_graph) {
   const std::size_t n = nodes_.size(), e = from_.size();
   if (e >= std::numeric_limits<std::uint32_t>::max())
     throw Error("graph builder: " + std::to_string(e) +
@@ -32,24 +32,24 @@ GraphStorage GraphBuilder::finish() {
   for (std::size_t f = 0; f < n; ++f) rowstart[f + 1] += rowstart[f];
   std::vector<std::uint32_t> next(rowstart.begin(), rowstart.end() - 1);
   std::vector<GraphVertex> targets(e);
-  std::vector<EdgeInfo> edges(e);
+  std::vector<double> weights(e);
   for (std::size_t i = 0; i < e; ++i) {
     const std::uint32_t slot = next[from_[i]]++;
     targets[slot] = to_[i];
-    edges[slot] = info_[i];
+    weights[slot] = info_[i].weight;
   }
   from_ = {};
   to_ = {};
   info_ = {};
-  return graph_storage_from_arrays(std::move(nodes_), std::move(rowstart), std::move(targets), std::move(edges));
+  out_graph.graph = graph_storage_from_arrays(std::move(nodes_), std::move(rowstart), std::move(targets));
+  out_graph.edge_weights = Samples<double>(std::move(weights));
 }
 
 GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<GraphVertex> targets, std::vector<EdgeInfo> edges) {
+                                       std::vector<GraphVertex> targets) {
   const std::size_t n = nodes.size();
-  if (rowstart.size() != n + 1 || targets.size() != edges.size() || rowstart.front() != 0 ||
-      rowstart.back() != targets.size())
-    throw Error("graph storage: row starts, targets and edges disagree");
+  if (rowstart.size() != n + 1 || rowstart.front() != 0 || rowstart.back() != targets.size())
+    throw Error("graph storage: row starts and targets disagree");
   for (std::size_t f = 0; f < n; ++f)
     if (rowstart[f] > rowstart[f + 1]) throw Error("graph storage: row starts are not ascending");
   for (const GraphVertex t : targets)
@@ -59,7 +59,6 @@ GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<
   GraphStorage g;
   g.m_forward.m_rowstart = std::move(rowstart);
   g.m_forward.m_column = std::move(targets);
-  g.m_forward.m_edge_properties = std::move(edges);
   g.m_vertex_properties = std::move(nodes);
   return g;
 }

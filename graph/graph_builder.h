@@ -25,8 +25,9 @@ class GraphBuilder {
   // natural edge, is_natural_edge) whose weight is not 0.
   void add_edge(int from, int to, const EdgeInfo& info);
 
-  // The storage (a stable counting sort by source); the builder is left empty.
-  GraphStorage finish();
+  // The storage (a stable counting sort by source) into out_graph.graph and the edges' weights, in
+  // its edge order, into out_graph.edge_weights; the builder is left empty.
+  void finish(MotionGraph& out_graph);
 
  private:
   std::vector<NodeInfo> nodes_;
@@ -35,10 +36,10 @@ class GraphBuilder {
 };
 
 // Moves arrays in compressed sparse row order into a storage without copying them: the
-// out-edges of frame f are rowstart[f] .. rowstart[f + 1] - 1 of targets and edges. Throws
-// gmg::Error when they disagree (sizes, rowstart not ascending from 0 to the edge count, a
-// target outside the graph).
+// out-edges of frame f are rowstart[f] .. rowstart[f + 1] - 1 of targets. Throws gmg::Error when
+// they disagree (sizes, rowstart not ascending from 0 to the edge count, a target outside the
+// graph).
 GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<GraphVertex> targets, std::vector<EdgeInfo> edges);
+                                       std::vector<GraphVertex> targets);
 
 }  // namespace gmg

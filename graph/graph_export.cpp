@@ -11,8 +11,8 @@
 namespace gmg {
 namespace {
 
-// The subgraph of frames [from, to) (vertex i = frame from + i).
-GraphStorage subgraph(const MotionGraph& g, int from, int to) {
+// The subgraph of frames [from, to) (vertex i = frame from + i): its storage and edge weights.
+MotionGraph subgraph(const MotionGraph& g, int from, int to) {
   if (from < 0 || to > g.frame_count() || from >= to)
     throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) +
                 " is outside the graph's 0:" + std::to_string(g.frame_count()));
@@ -21,10 +21,12 @@ GraphStorage subgraph(const MotionGraph& g, int from, int to) {
     sub.node(f - from) = g.node(f);
     for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it) {
       const int b = static_cast<int>(boost::target(*it, g.graph));
-      if (b >= from && b < to) sub.add_edge(f - from, b - from, g.graph[*it]);
+      if (b >= from && b < to) sub.add_edge(f - from, b - from, EdgeInfo{g.weight(*it)});
     }
   }
-  return sub.finish();
+  MotionGraph out;
+  sub.finish(out);
+  return out;
 }
 
 std::string kind_names(std::uint8_t kinds) {
@@ -39,7 +41,8 @@ std::string kind_names(std::uint8_t kinds) {
 }  // namespace
 
 void graph_write_dot(const std::string& path, const MotionGraph& g, int from, int to) {
-  const GraphStorage sub = subgraph(g, from, to);
+  const MotionGraph part = subgraph(g, from, to);
+  const GraphStorage& sub = part.graph;
   write_file_atomically(path, [&](std::ostream& out) {
     boost::write_graphviz(
         out, sub,
@@ -60,13 +63,15 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
           if (is_natural_edge(boost::source(e, sub), boost::target(e, sub)))
             os << "[color=gray]";
           else
-            os << "[color=orange, label=\"" << sub[e].weight << "\"]";
+            os << "[color=orange, label=\"" << part.weight(e) << "\"]";
         });
   });
 }
 
 void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
-  GraphStorage sub = subgraph(g, from, to);
+  const MotionGraph part = subgraph(g, from, to);
+  const GraphStorage& sub = part.graph;
+  std::vector<double> weight(part.edge_weights.data(), part.edge_weights.data() + part.edge_weights.size());
   std::vector<int> frame(boost::num_vertices(sub));
   std::vector<std::string> kinds(boost::num_vertices(sub)), keyword(boost::num_vertices(sub));
   for (std::size_t v = 0; v < frame.size(); ++v) {
@@ -81,7 +86,7 @@ void graph_write_graphml(const std::string& path, const MotionGraph& g, int from
   dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("keyword", boost::make_iterator_property_map(keyword.begin(), boost::get(boost::vertex_index, sub)));
-  dp.property("weight", boost::get(&EdgeInfo::weight, sub));
+  dp.property("weight", boost::make_iterator_property_map(weight.begin(), boost::get(boost::edge_index, sub)));
   dp.property("natural", boost::make_iterator_property_map(natural.begin(), boost::get(boost::edge_index, sub)));
   write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
 }

@@ -1,34 +1,39 @@
 // Saving and loading built graphs.
 //
-// File format (version 8; 7 lacks the key sketch), little-endian:
+// File format (version 9; 8 has the key poses and the edge weights where the checksum covers them,
+// unaligned weights, 7 also lacks the key sketch), little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
-//   u64      how many of the payload's first bytes the checksum covers: all but the motion's values
-//   payload  params, skeleton, clips, the motion's frame rate and count, nodes, edges, speech
-//            features, activity, key poses and their sketch (write_payload), the reference facts
+//   u64      how many of the payload's first bytes the checksum covers: all but the key poses' and
+//            the motion's values
+//   payload  params, skeleton, clips, the motion's frame rate and count, nodes, edges (row starts,
+//            targets, weights, natural flags), speech features, activity, the key poses' count and
+//            each key's checksum, their sketch (write_payload), the reference facts
 //            (write_reference_facts: the assembly's capture facts and the frames' beat end costs,
 //            graph/reference_facts.h), the SMPL-X body (write_body: empty for BVH references), and
-//            last the motion (write_motion): frames per block, each block's checksum, then the
-//            rotations and the translations
+//            last the motion (write_motion): frames per block, each block's checksum, then the key
+//            poses, the rotations and the translations
 //   u64      checksum of the payload's first bytes (XXH3-64, engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The nine largest (the
-// motion's rotations and translations, the speech features, the motion activity, the key
-// nodes' junction poses and their sketch, the foot contacts, the beat end costs and the body's
-// face) each start on a 4096-byte boundary of the file (zero bytes pad up to it), so a loaded
-// graph reads the first eight in place from the file's mapping (engine/core/files.h MappedFile): the pages of the file
-// are shared by every process that reads it, and none of them is kept resident by the load.
+// The large parts are flat arrays in the layout they have in memory. The ten largest (the
+// motion's rotations and translations, the edge weights, the speech features, the motion
+// activity, the key nodes' junction poses and their sketch, the foot contacts, the beat end costs
+// and the body's face) each start on a 4096-byte boundary of the file (zero bytes pad up to it),
+// so a loaded graph reads all but the face in place from the file's mapping (engine/core/files.h
+// MappedFile): the pages of the file are shared by every process that reads it, and the load
+// keeps none of them resident but the edge weights'.
 //
 // A load checks the file's checksum and every field of the part it covers in one pass. The
-// motion, most of the file, has a checksum per block of frames instead: the load checks all of
-// them (MotionCheck::OnLoad) or leaves each block to be checked when first used
-// (MotionCheck::OnUse, graph_check_frames), so that a reenactment from a long reference reads only
-// the stretches it plays. The face is copied (SmplxBody holds its own arrays; a graph from BVH
-// references has none). The edges and nodes, whose values index other arrays, are validated and
-// copied (a tenth of the file), so a file rewritten in place under a running gmg can give wrong
-// values, never an out-of-bounds read; the mapping then reports the change
+// motion, most of the file, has a checksum per block of frames instead, and the key poses one per
+// key: the load checks all of them (MotionCheck::OnLoad) or leaves each block and key to be
+// checked when first used (MotionCheck::OnUse, graph_check_frames and graph_check_key_poses), so
+// that a reenactment from a long reference reads only the stretches it plays and the poses it
+// ranks. The face is copied (SmplxBody holds its own arrays; a graph from BVH references has
+// none). The edges' targets and row starts and the nodes, whose values index other arrays, are
+// validated and copied (8 bytes an edge and a node), so a file rewritten in place under a running
+// gmg can give wrong values, never an out-of-bounds read; the mapping then reports the change
 // (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are not
-// stored: the load takes them from the nodes and edges it copies. A file with another magic or
+// stored: the load takes them from the nodes and edges it reads. A file with another magic or
 // version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
 // reference facts, 6 one checksum over everything), a short or over-long payload or a wrong
 // checksum is rejected before anything is used.
@@ -38,6 +43,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <utility>
 
 #include "engine/core/checksum.h"
 #include "engine/core/error.h"
@@ -244,10 +250,11 @@ class Reader {
     return {reinterpret_cast<const T*>(data_ + pos_), static_cast<std::size_t>(n)};
   }
   // The n items of T that follow (an aligned list's): visit(chunk, first, count) over chunks of a
-  // few MB, each summed after its visit and its pages given back, so a pass over a large array
-  // does not leave it resident. The items stay readable in place (they live as long as the bytes).
+  // few MB, each summed after its visit and (`release`) its pages given back, so a pass over a large
+  // array does not leave it resident. The items stay readable in place (they live as long as the
+  // bytes).
   template <typename T, typename F>
-  void in_place(std::size_t n, const F& visit) {
+  void in_place(std::size_t n, const F& visit, bool release = true) {
     need(n * sizeof(T));
     const T* p = reinterpret_cast<const T*>(data_ + pos_);
     constexpr std::size_t kChunk = (std::size_t{4} << 20) / sizeof(T);
@@ -256,7 +263,7 @@ class Reader {
       visit(p + i, i, m);
       const std::size_t offset = static_cast<std::size_t>(data_ + pos_ - src_.data);
       consume(m * sizeof(T));
-      src_.release(offset, m * sizeof(T));
+      if (release) src_.release(offset, m * sizeof(T));
     }
   }
   bool done() const { return pos_ == size_; }
@@ -513,7 +520,10 @@ void write_payload(Writer& w, const MotionGraph& g, std::uint32_t version) {
   w.vec(csr.m_rowstart);
   const std::size_t e = csr.m_column.size();
   w.vec_of<std::uint32_t>(e, [&](std::size_t i) { return static_cast<std::uint32_t>(csr.m_column[i]); });
-  w.vec_of<double>(e, [&](std::size_t i) { return csr.m_edge_properties[i].weight; });
+  if (version >= 9)
+    w.aligned(g.edge_weights);
+  else
+    w.vec_of<double>(e, [&](std::size_t i) { return g.edge_weights[i]; });
   // Each edge's natural flag (is_natural_edge: derived, kept in the file so that a reader need not
   // know the rule).
   std::vector<std::uint8_t> natural(e);
@@ -774,35 +784,54 @@ std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames, MotionGraph& g) 
 // The edges, and the mean weight of the unnatural ones (MotionGraph::transition_weight, summed in
 // edge order as mean_transition_weight does). Each edge's natural flag must be is_natural_edge's:
 // a natural edge steps to the next frame with weight 0, a transition never steps to the next frame.
-GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes, double& transition_weight) {
+// Format 9's weights are read in place (aligned, their pages kept mapped for the flags' pass that
+// follows); older formats' are copied.
+void read_edges(Reader& r, const Source& src, std::uint32_t version, std::vector<NodeInfo> nodes, MotionGraph& out) {
   std::vector<std::uint32_t> rowstart = huge_vector<std::uint32_t>(r.count<std::uint32_t>());
   r.items<std::uint32_t>(rowstart.size(), [&](std::size_t i, std::uint32_t s) { rowstart[i] = s; });
   const std::size_t e = r.count<std::uint32_t>();
   std::vector<GraphVertex> targets = huge_vector<GraphVertex>(e);
   r.items<std::uint32_t>(e, [&](std::size_t i, std::uint32_t t) { targets[i] = t; });
-  std::vector<EdgeInfo> edges = huge_vector<EdgeInfo>(e);
-  if (r.count<double>() != e) r.fail("edge weights disagree with the edge count");
+  // A weight is valid when finite and not negative: w - w is 0 and w >= 0 (NaN fails both).
+  auto valid = [](double w) { return w - w == 0.0 && w >= 0.0; };
   bool invalid = false;
-  r.items<double>(e, [&](std::size_t i, double w) {
-    edges[i].weight = w;
-    invalid = invalid || !std::isfinite(w) || w < 0;
-  });
+  if (version >= 9) {
+    const auto [weights, n] = r.aligned<double>();
+    if (n != e) r.fail("edge weights disagree with the edge count");
+    r.in_place<double>(
+        n,
+        [&](const double* p, std::size_t, std::size_t m) {
+          std::size_t good = 0;
+          for (std::size_t i = 0; i < m; ++i) good += valid(p[i]) ? 1 : 0;
+          invalid = invalid || good != m;
+        },
+        false);
+    out.edge_weights = Samples<double>::view(weights, n, src.owner);
+  } else {
+    std::vector<double> weights = huge_vector<double>(e);
+    if (r.count<double>() != e) r.fail("edge weights disagree with the edge count");
+    r.items<double>(e, [&](std::size_t i, double w) {
+      weights[i] = w;
+      invalid = invalid || !valid(w);
+    });
+    out.edge_weights = Samples<double>(std::move(weights));
+  }
   if (invalid) r.fail("an edge weight is negative or not finite");
-  GraphStorage g;
   try {
-    g = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets), std::move(edges));
+    out.graph = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets));
   } catch (const Error& err) {
     r.fail(err.what());
   }
   if (r.count<std::uint8_t>() != e) r.fail("edge flags disagree with the edge count");
-  const auto& csr = g.m_forward;
+  const auto& csr = out.graph.m_forward;
+  const double* weights = std::as_const(out.edge_weights).data();  // not data(): that copies a view
   double sum = 0.0;
   long transitions = 0;
   std::size_t source = 0;
   r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t flag) {
     while (i >= csr.m_rowstart[source + 1]) ++source;  // rows are ascending (checked above)
     const bool natural = is_natural_edge(source, csr.m_column[i]);
-    const double weight = csr.m_edge_properties[i].weight;
+    const double weight = weights[i];
     if (natural != (flag != 0) || (natural && weight != 0))
       r.fail(natural ? "an edge from frame " + std::to_string(source) +
                            " to the next frame is not its natural edge of weight 0"
@@ -812,8 +841,7 @@ GraphStorage read_edges(Reader& r, std::vector<NodeInfo> nodes, double& transiti
       ++transitions;
     }
   });
-  transition_weight = transitions > 0 ? sum / static_cast<double>(transitions) : 0.0;
-  return g;
+  out.transition_weight = transitions > 0 ? sum / static_cast<double>(transitions) : 0.0;
 }
 
 // The clip table: contiguous clips (summed in 64 bits, so counts near 2^31 cannot wrap); the
@@ -966,7 +994,7 @@ MotionGraph read_payload(Reader& r, const Source& src, const std::string& path, 
   g.clips = read_clips(r, covered);
   read_motion_header(r, g.motion);
   if (covered != g.motion.frame_count) r.fail("clips do not cover the motion");
-  g.graph = read_edges(r, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g.transition_weight);
+  read_edges(r, src, version, read_nodes(r, static_cast<std::size_t>(g.motion.frame_count), g), g);
   read_speech(r, src, g);
   KeyPoseTail tail;
   if (version >= 9)

@@ -2,9 +2,10 @@
 // inside continuous runs, unnatural edges where two frames are close enough to jump between.
 //
 // Stored as a Boost.Graph compressed_sparse_row_graph: vertex descriptor == global frame index,
-// one array of targets and one of edge properties in source order, so a graph is a few flat
-// arrays (12 bytes an edge), moves without copying and loads at memory speed. It is immutable:
-// graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
+// one array of targets in source order, and beside it (MotionGraph::edge_weights) the edges'
+// weights in the same order, so a graph is a few flat arrays (12 bytes an edge), moves without
+// copying and loads at memory speed; a loaded graph reads the weights in place from its file. It
+// is immutable: graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
 // they were added in: the natural edge first, then transitions by ascending target. With
 // max_transitions (graph/params.h) edges grow linearly with frames.
 //
@@ -45,6 +46,7 @@ struct NodeInfo {
   KeywordLabel keyword;    // the keyword label; non-empty exactly when kinds has kKeywordNode
 };
 
+// An edge as graph/graph_builder.h takes it.
 struct EdgeInfo {
   double weight = 0.0;  // 0 for natural edges, the pose distance d(l, r) for unnatural ones
 };
@@ -55,11 +57,12 @@ struct EdgeInfo {
 inline bool is_natural_edge(std::size_t from, std::size_t to) { return to == from + 1; }
 
 // Vertices and edge indices are 32-bit (a graph holds fewer than 2^31 frames, limits.h, and fewer
-// than 2^32 edges, graph_builder checks): 12 bytes an edge. boost::out_edges takes a
-// GraphVertex (it does not convert a std::size_t or an int).
+// than 2^32 edges, graph_builder checks): 4 bytes an edge, and 8 for its weight beside it.
+// boost::out_edges takes a GraphVertex (it does not convert a std::size_t or an int).
 using GraphVertex = std::uint32_t;
-using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, EdgeInfo, boost::no_property,
-                                                        GraphVertex, std::uint32_t>;
+using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, boost::no_property,
+                                                        boost::no_property, GraphVertex, std::uint32_t>;
+using GraphEdge = GraphStorage::edge_descriptor;
 
 // The motion of a graph served from its file and loaded with MotionCheck::OnUse (graph/graph_io.h):
 // its frames are checked a block at a time, against the block's checksum in the file and for unit
@@ -112,7 +115,10 @@ struct MotionGraph {
   Motion motion;                // every reference clip, concatenated in order (node i = frame i)
   std::vector<ClipInfo> clips;  // in order, contiguous, covering all frames
   GraphStorage graph;           // num_vertices == motion.frame_count
-  GraphParams params;           // what it was built with
+  // Every edge's weight (EdgeInfo::weight), in the storage's edge order: num_edges(graph) values,
+  // read in place from the file of a loaded graph (format 9; copied from older ones).
+  Samples<double> edge_weights;
+  GraphParams params;  // what it was built with
   // The reference speech under every frame (audio/speech_features.h): frame_count x speech_dims
   // values, frame-major; empty (speech_dims 0) for a graph of clips given without them (a graph
   // file of format 2), which the planner then matches without speech.
@@ -164,6 +170,7 @@ struct MotionGraph {
     return speech.data() + static_cast<std::size_t>(frame) * static_cast<std::size_t>(speech_dims);
   }
   const NodeInfo& node(int frame) const { return graph[static_cast<std::size_t>(frame)]; }
+  double weight(const GraphEdge& e) const { return edge_weights[e.idx]; }
   bool is_key(int frame) const { return node(frame).kinds != 0; }
   // Key nodes of any kind, ascending (a scan of the nodes; graph/reference_facts.h graph_keys reads
   // the index when there is one).

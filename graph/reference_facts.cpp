@@ -4,12 +4,12 @@
 
 namespace gmg {
 
-double mean_transition_weight(const GraphStorage& graph) {
+double mean_transition_weight(const MotionGraph& g) {
   double sum = 0.0;
   long count = 0;
-  for (auto [it, end] = boost::edges(graph); it != end; ++it)
-    if (!is_natural_edge(boost::source(*it, graph), boost::target(*it, graph))) {
-      sum += graph[*it].weight;
+  for (auto [it, end] = boost::edges(g.graph); it != end; ++it)
+    if (!is_natural_edge(boost::source(*it, g.graph), boost::target(*it, g.graph))) {
+      sum += g.weight(*it);
       ++count;
     }
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
@@ -32,7 +32,7 @@ void index_graph(MotionGraph& g) {
     if (g.is_key(f)) g.keys.push_back(f);
     if (g.node(f).kinds & kBreakNode) g.breaks.push_back(f);
   }
-  g.transition_weight = mean_transition_weight(g.graph);
+  g.transition_weight = mean_transition_weight(g);
   g.indexed = true;
 }
 

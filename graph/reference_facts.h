@@ -21,7 +21,7 @@ void add_reference_facts(MotionGraph& g);
 void index_graph(MotionGraph& g);
 
 // The mean weight of the unnatural edges, summed in edge order; 0 without any.
-double mean_transition_weight(const GraphStorage& graph);
+double mean_transition_weight(const MotionGraph& g);
 
 // The key frames, ascending: the index when the graph has one, else a scan of the nodes.
 std::vector<int> graph_keys(const MotionGraph& g);

@@ -122,7 +122,7 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         Entry x;
         x.tree = static_cast<int>(tree.size()) - 1;
         x.length = e.length + 1;
-        x.weight_sum = e.weight_sum + request.weight_scale * g.graph[*out].weight;
+        x.weight_sum = e.weight_sum + request.weight_scale * g.weight(*out);
         x.start_cost = e.start_cost;
         x.extra_sum = e.extra_sum + extra_cost(request, e.length, child);
         x.reuse_max = std::max(e.reuse_max, reuse_cost(request, e.length, child));

@@ -12,7 +12,7 @@ namespace gmg {
 JunctionCost::JunctionCost(const MotionGraph& g) : g_(g) {
   // The graph's mean transition weight (computed when it was built or loaded). A graph without
   // transitions has no scale of its own; 1 leaves d_pose as it is.
-  const double mean = g.indexed ? g.transition_weight : mean_transition_weight(g.graph);
+  const double mean = g.indexed ? g.transition_weight : mean_transition_weight(g);
   if (mean > 0.0) normaliser_ = mean;
   if (!g.key_poses.empty()) keys_ = graph_keys(g);
 }

@@ -56,7 +56,7 @@ gmg::MotionGraph tile(const gmg::MotionGraph& g, int copies) {
   std::vector<NodeInfo> nodes;
   std::vector<std::uint32_t> rowstart;
   std::vector<GraphVertex> targets;
-  std::vector<EdgeInfo> edges;
+  std::vector<double> weights;
   const std::size_t e = csr.m_column.size();
   for (int c = 0; c < copies; ++c) {
     for (std::size_t f = 0; f < n; ++f) {
@@ -65,11 +65,12 @@ gmg::MotionGraph tile(const gmg::MotionGraph& g, int copies) {
     }
     for (std::size_t i = 0; i < e; ++i) {
       targets.push_back(static_cast<GraphVertex>(csr.m_column[i] + static_cast<std::size_t>(c) * n));
-      edges.push_back(csr.m_edge_properties[i]);
+      weights.push_back(g.edge_weights[i]);
     }
   }
   rowstart.push_back(static_cast<std::uint32_t>(copies * e));
-  t.graph = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets), std::move(edges));
+  t.graph = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets));
+  t.edge_weights = Samples<double>(std::move(weights));
   index_graph(t);
   return t;
 }

@@ -219,7 +219,7 @@ MotionGraph tiny_graph() {
   GraphBuilder b(8);
   for (int f = 0; f + 1 < 8; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0});
   b.node(7).kinds = kBreakNode;
-  g.graph = b.finish();
+  b.finish(g);
   return g;
 }
 

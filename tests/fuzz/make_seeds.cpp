@@ -159,7 +159,7 @@ gmg::MotionGraph tiny_graph() {
   b.node(3).keyword = "big";
   b.node(5).kinds = gmg::kBreakNode;
   b.node(9).kinds = gmg::kBreakNode;
-  g.graph = b.finish();
+  b.finish(g);
   gmg::add_reference_facts(g);  // so the seed reaches the reference facts' checks
   return g;
 }

@@ -109,18 +109,18 @@ inline MotionGraph legged_graph() {
   return graph_build({legged_clip("a.bvh", 120, 0.0), legged_clip("b.bvh", 90, 1.0)}, GraphParams{});
 }
 
-// The storage of g with one more edge, out of `from` after its own (storage is immutable once
-// built: tests that damage a graph rebuild it).
-inline GraphStorage with_edge(const GraphStorage& g, int from, int to, const EdgeInfo& extra) {
-  const int n = static_cast<int>(boost::num_vertices(g));
+// Gives g one more edge, out of `from` after its own (storage is immutable once built: tests that
+// damage a graph rebuild it).
+inline void add_edge_to(MotionGraph& g, int from, int to, const EdgeInfo& extra) {
+  const int n = static_cast<int>(boost::num_vertices(g.graph));
   GraphBuilder b(n);
   for (int f = 0; f < n; ++f) {
-    b.node(f) = g[static_cast<GraphVertex>(f)];
-    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<GraphVertex>(f), g)))
-      b.add_edge(f, static_cast<int>(boost::target(e, g)), g[e]);
+    b.node(f) = g.graph[static_cast<GraphVertex>(f)];
+    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<GraphVertex>(f), g.graph)))
+      b.add_edge(f, static_cast<int>(boost::target(e, g.graph)), EdgeInfo{g.weight(e)});
     if (f == from) b.add_edge(from, to, extra);
   }
-  return b.finish();
+  b.finish(g);
 }
 
 }  // namespace gmg::testing

@@ -54,7 +54,7 @@ TEST(Graph, LongClipsGetTheFeaturesOfOnePoseFeaturesCall) {
   for (int f = 0; f < g.frame_count(); ++f)
     for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it)
       if (boost::target(*it, g.graph) != static_cast<GraphVertex>(f + 1))
-        built.emplace_back(f, static_cast<int>(boost::target(*it, g.graph)), g.graph[*it].weight);
+        built.emplace_back(f, static_cast<int>(boost::target(*it, g.graph)), g.weight(*it));
   for (const Transition& t : continuity_analysis(pose_features(m), one_run(9000), p))
     direct.emplace_back(t.from, t.to, t.weight);
   ASSERT_GT(direct.size(), 1000u);

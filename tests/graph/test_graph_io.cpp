@@ -53,12 +53,11 @@ MotionGraph long_graph() {
   return graph_build({{"long.bvh", line_motion(x), {10, 400}, {{20, "big"}}}}, GraphParams{});
 }
 
-// The bytes of a graph's edges and nodes: what a load copies (the motion, speech features and
-// activity are read in place from the file).
+// The bytes of a graph's edge targets, row starts and nodes: what a load copies (the motion, the
+// edge weights, speech features and activity are read in place from the file).
 std::size_t copied_bytes(const MotionGraph& g) {
   return g.graph.m_forward.m_rowstart.size() * sizeof(std::uint32_t) +
          g.graph.m_forward.m_column.size() * sizeof(GraphVertex) +
-         g.graph.m_forward.m_edge_properties.size() * sizeof(EdgeInfo) +
          g.graph.m_vertex_properties.size() * sizeof(NodeInfo);
 }
 
@@ -68,6 +67,7 @@ TEST(GraphIo, LoadingServesTheMotionFromTheFile) {
   graph_save(dir.file("g.gmg"), g);
   const std::size_t motion = g.motion.rotations.size() * sizeof(glm::dquat) +
                              g.motion.translations.size() * sizeof(glm::dvec3) + g.speech.size() * sizeof(float);
+  const std::size_t weights = g.edge_weights.size() * sizeof(double);
   const std::size_t copied = copied_bytes(g);
   ASSERT_GT(motion, 300000u);
   // As the command line does it: a graph declared first, then assigned the loaded one.
@@ -81,12 +81,16 @@ TEST(GraphIo, LoadingServesTheMotionFromTheFile) {
   EXPECT_TRUE(h.motion.rotations.is_view());
   EXPECT_TRUE(h.motion.translations.is_view());
   EXPECT_TRUE(h.speech.is_view());
+  EXPECT_TRUE(h.edge_weights.is_view());
   EXPECT_EQ(h.motion.rotations, g.motion.rotations);
   EXPECT_EQ(h.speech, g.speech);
-  // The edges and nodes plus small change (names, skeleton); a copy of the motion would be more.
+  EXPECT_EQ(h.edge_weights, g.edge_weights);
+  // The edges' targets and the nodes plus small change (names, skeleton); a copy of the motion
+  // would be more, and one of the weights (half the edges' bytes) more than the change.
+  ASSERT_GT(weights, 40000u);
   EXPECT_GE(g_allocated.load(), copied);
-  EXPECT_LT(g_allocated.load(), copied + motion / 2)
-      << "edges and nodes are " << copied << " bytes, the motion " << motion;
+  EXPECT_LT(g_allocated.load(), copied + weights / 2)
+      << "edge targets and nodes are " << copied << " bytes, the weights " << weights << ", the motion " << motion;
   // A copy of the graph shares the mapping; changing its motion copies it, not the file.
   MotionGraph c = h;
   EXPECT_EQ(std::as_const(c).motion.rotations.data(), std::as_const(h).motion.rotations.data());
@@ -138,9 +142,9 @@ TEST(GraphIo, SaveLoadRoundTrip) {
     EXPECT_EQ(h.node(f).keyword, g.node(f).keyword);
     std::vector<std::tuple<std::size_t, double>> a, b;
     for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it)
-      a.emplace_back(boost::target(*it, g.graph), g.graph[*it].weight);
+      a.emplace_back(boost::target(*it, g.graph), g.weight(*it));
     for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), h.graph); it != end; ++it)
-      b.emplace_back(boost::target(*it, h.graph), h.graph[*it].weight);
+      b.emplace_back(boost::target(*it, h.graph), h.weight(*it));
     EXPECT_EQ(a, b) << "frame " << f;
   }
   EXPECT_EQ(h.params.max_transitions, g.params.max_transitions);
@@ -457,15 +461,14 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
                  [](MotionGraph& g) { g.graph[5].keyword = "stray"; });
   expect_refused("a node has unknown kinds", [](MotionGraph& g) { g.graph[5].kinds |= 0x80; });
   expect_refused("an edge weight is negative or not finite",
-                 [](MotionGraph& g) { g.graph = with_edge(g.graph, 3, 90, EdgeInfo{-1.0}); });
-  expect_refused("an edge weight is negative or not finite", [](MotionGraph& g) {
-    g.graph = with_edge(g.graph, 3, 90, EdgeInfo{std::numeric_limits<double>::quiet_NaN()});
-  });
+                 [](MotionGraph& g) { add_edge_to(g, 3, 90, EdgeInfo{-1.0}); });
+  expect_refused("an edge weight is negative or not finite",
+                 [](MotionGraph& g) { add_edge_to(g, 3, 90, EdgeInfo{std::numeric_limits<double>::quiet_NaN()}); });
   // A step to the next frame is the natural edge: its weight is 0 (the builder refuses another;
-  // the storage's arrays are written to directly).
+  // the weights are written to directly).
   expect_refused("an edge from frame 3 to the next frame is not its natural edge of weight 0", [](MotionGraph& g) {
     ASSERT_EQ(boost::target(*boost::out_edges(GraphVertex{3}, g.graph).first, g.graph), 4u);
-    g.graph.m_forward.m_edge_properties[g.graph.m_forward.m_rowstart[3]].weight = 0.5;
+    g.edge_weights[g.graph.m_forward.m_rowstart[3]] = 0.5;
   });
   // The key sketch: what makes its bound a bound (orthonormal rows, each zero off its part), its
   // sizes and finite values.
@@ -536,7 +539,7 @@ TEST(GraphIo, TheNaturalFlagsAreTheStepsToTheNextFrame) {
   std::size_t transition = e, step = e;  // an edge of each kind
   for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
     for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i) {
-      weights.append(reinterpret_cast<const char*>(&csr.m_edge_properties[i].weight), sizeof(double));
+      weights.append(reinterpret_cast<const char*>(&g.edge_weights[i]), sizeof(double));
       const bool natural = csr.m_column[i] == f + 1;
       flags += natural ? '\1' : '\0';
       (natural ? step : transition) = i;

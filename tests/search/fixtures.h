@@ -36,7 +36,7 @@ inline MotionGraph chain_graph(int n, const std::vector<int>& onsets,
   b.node(n - 1).kinds |= kBreakNode;
   for (int f = 0; f + 1 < n; ++f) b.add_edge(f, f + 1, EdgeInfo{0.0});
   for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight});
-  g.graph = b.finish();
+  b.finish(g);
   return g;
 }
 

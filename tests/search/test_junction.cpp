@@ -42,7 +42,7 @@ MotionGraph posed_graph(const std::vector<double>& angle, const std::vector<int>
   for (int f = 0; f + 1 < n; ++f)
     if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0});
   for (const Transition& t : jumps) b.add_edge(t.from, t.to, EdgeInfo{t.weight});
-  g.graph = b.finish();
+  b.finish(g);
   return g;
 }
 
@@ -193,7 +193,7 @@ MotionGraph waving_graph(int n, int every) {
   for (int f = 0; f + 1 < n; ++f)
     if (!(b.node(f).kinds & kBreakNode)) b.add_edge(f, f + 1, EdgeInfo{0.0});
   for (int f = 7; f + 40 < n; f += 37) b.add_edge(f, f + 40, EdgeInfo{1.0 + 0.01 * f});
-  g.graph = b.finish();
+  b.finish(g);
   g.key_poses = key_junction_poses(g);
   g.key_sketch = key_pose_sketch(g.key_poses, junction_pose_dims(sk));
   return g;
