@@ -142,6 +142,23 @@ void rename_into_place(const std::string& temp, const std::string& path) {
   }
 }
 
+void BlockWriter::write(const void* data, std::size_t size) {
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    if (buffer_.capacity() < block_) buffer_.reserve(block_);
+    const std::size_t n = std::min(size, block_ - buffer_.size());
+    buffer_.insert(buffer_.end(), p, p + n);
+    p += n;
+    size -= n;
+    if (buffer_.size() == block_) flush();
+  }
+}
+
+void BlockWriter::flush() {
+  if (!buffer_.empty()) out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
   const std::string temp = temporary_name_for(path);
   const int slot = register_temporary_file(temp);  // before the file exists, so a signal never misses it

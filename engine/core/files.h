@@ -107,6 +107,24 @@ void rename_into_place(const std::string& temp, const std::string& path);
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                            bool binary = false);
 
+// Writes to a stream in whole blocks of `block` bytes, each at a multiple of `block` from where
+// writing began (flush() writes the shorter rest). Linux (6.18 with ext4 here) gives the page cache
+// of a write folios as large as the write's length and alignment allow, and a file later read
+// through a mapping is read as fast as its folios are large: a graph file written in 4 MB pieces
+// at unaligned offsets was served at about half the speed of the same bytes written in aligned
+// blocks (graph/graph_io.cpp). Buffers one block.
+class BlockWriter {
+ public:
+  BlockWriter(std::ostream& out, std::size_t block) : out_(out), block_(block) {}
+  void write(const void* data, std::size_t size);
+  void flush();
+
+ private:
+  std::ostream& out_;
+  std::size_t block_;
+  std::vector<char> buffer_;
+};
+
 // Creates the folder `dir` and the missing ones above it (gmg::Error naming dir and the reason
 // when it cannot); destroyed without keep(), it removes the folders it created, deepest first,
 // as long as they are empty, so a command that fails (a full disk) leaves no empty folder behind.

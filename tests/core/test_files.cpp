@@ -65,6 +65,47 @@ TEST(Files, ReadErrorsHaveOneWording) {
   EXPECT_EQ(error_of([&] { read_file_bytes(below_file); }), below_file + ": cannot open (Not a directory)");
 }
 
+// A stream buffer that keeps every write it is given, as the file's write() calls would be.
+class RecordingBuffer : public std::streambuf {
+ public:
+  std::vector<std::string> writes;
+
+ protected:
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    writes.emplace_back(s, static_cast<std::size_t>(n));
+    return n;
+  }
+  int_type overflow(int_type c) override {
+    if (c != traits_type::eof()) writes.emplace_back(1, traits_type::to_char_type(c));
+    return c;
+  }
+};
+
+// Pieces of any size, a few bytes to several blocks, reach the stream as whole blocks at multiples
+// of the block from the start, and the rest at flush(), the same bytes in the same order.
+TEST(Files, BlockWriterWritesWholeAlignedBlocks) {
+  RecordingBuffer recorded;
+  std::ostream out(&recorded);
+  BlockWriter w(out, 16);
+  std::string expected;
+  for (std::size_t size : {3, 5, 40, 1, 16, 7, 0, 33}) {
+    std::string piece;
+    for (std::size_t i = 0; i < size; ++i) piece += static_cast<char>('a' + (expected.size() + i) % 26);
+    w.write(piece.data(), piece.size());
+    expected += piece;
+  }
+  EXPECT_EQ(recorded.writes.size(), expected.size() / 16);  // only whole blocks before flush()
+  w.flush();
+  w.flush();  // nothing more
+  ASSERT_EQ(recorded.writes.size(), expected.size() / 16 + 1);
+  std::string joined;
+  for (std::size_t i = 0; i < recorded.writes.size(); ++i) {
+    EXPECT_EQ(recorded.writes[i].size(), i + 1 < recorded.writes.size() ? 16u : expected.size() % 16) << i;
+    joined += recorded.writes[i];
+  }
+  EXPECT_EQ(joined, expected);
+}
+
 TEST(Files, AtomicWriteReplacesTheFile) {
   TempDir dir;
   const std::string path = dir.file("out.txt");
