@@ -1,12 +1,15 @@
 // Benchmark: the graph build's candidate search (graph/neighbours.h) with our k-d tree against
-// FLANN (libflann-dev), at equal recall. Prints figures; asserts nothing about time (machines are
-// shared and noisy). Built only when FLANN is found (see CMakeLists.txt).
+// FLANN (libflann-dev), and against hnswlib's graphs (libhnswlib-dev, when found; --hnsw), at equal
+// recall. Prints figures; asserts nothing about time (machines are shared and noisy). Built only
+// when FLANN is found (see CMakeLists.txt).
 //
 // Run: build/bench_flann [--hours 1,2,4] [--queries 20480] [--block 128] [--repeat 3] [--brute 32]
 //                        [--ours-checks 2000,1000,500]
 //                        [--kprime 192,256] [--checks 256,...,4096] [--spaces full,proj]
 //                        [--indexes kd4,kd8,kmeans,hier (or space:index, e.g. proj:hier)]
 //                        [--cluster-hours 1] [--autotune-hours 0]
+//                        [--hnsw full,proj] [--hnsw-graphs 16x100 (M x ef_construction)]
+//                        [--ef 256,384,512,768,1024]
 //
 // For each length: a synthetic speaker (engine/synth, 25 joints, seed 3, as bench_graph; audio at
 // 8 kHz, which the motion does not depend on, and dropped at once), its pose features computed a
@@ -32,6 +35,9 @@
 //    by (d, r), with our finder's own gathering (graph/candidate_gathering.h: d screened in float,
 //    decided in double near theta and the k-th), so the result is exact over FLANN's candidates.
 //    The refinement is part of the query time (and its column); its pose space of the build.
+// 3. hnswlib (--hnsw, in the same spaces): an HNSW graph over all frames per M x ef_construction,
+//    built on 2 threads (its CPU time in the build column), searched for k' with each ef >= k' until
+//    the recall reaches 0.95, refined as FLANN's are. Not in the repeated fastest (step 4).
 // Times: index build (for ours the finder's construction: pose space and tree), queries in CPU
 // seconds of the process (every thread) and wall seconds. The fastest setting of each with recall
 // >= 0.95 (by build + query CPU scaled to all frames) is then timed `repeat` more times, on 1 and
@@ -52,6 +58,9 @@
 #include <vector>
 
 #include <flann/flann.hpp>
+#ifdef GMG_HAVE_HNSWLIB
+#include <hnswlib/hnswlib.h>
+#endif
 
 #include "engine/core/parallel.h"
 #include "engine/synth/synth.h"
@@ -113,6 +122,11 @@ struct Options {
   std::vector<std::string> indexes{"kd4", "kd8", "kmeans", "hier"};
   double cluster_hours = 1;   // k-means and hierarchical indexes up to this length only
   double autotune_hours = 0;  // FLANN's autotuned index up to this length (0: never)
+  // hnswlib (when built with it): graphs as M x ef_construction, searched with each ef >= k'
+  // until the recall reaches 0.95; none by default.
+  std::vector<std::string> hnsw_spaces;
+  std::vector<std::pair<int, int>> hnsw_graphs{{16, 100}};
+  std::vector<int> ef{256, 384, 512, 768, 1024};
 };
 
 // One row of the table.
@@ -336,6 +350,54 @@ Lists run_flann(const Reference& ref, const neighbours::PoseSpace& space, const 
   return out;
 }
 
+#ifdef GMG_HAVE_HNSWLIB
+using HnswIndex = hnswlib::HierarchicalNSW<float>;
+
+// An HNSW graph over every frame of a space, built on `cores` threads (hnswlib's insertions may
+// run in parallel once the first point is in). Returns the build's CPU seconds in `cpu_s`.
+std::unique_ptr<HnswIndex> build_hnsw(hnswlib::L2Space& l2, const Space& s, int m, int ef_construction, int cores,
+                                      double& cpu_s) {
+  const std::size_t n = s.data.size() / static_cast<std::size_t>(s.dims), dims = static_cast<std::size_t>(s.dims);
+  Timer t;
+  auto index =
+      std::make_unique<HnswIndex>(&l2, n, static_cast<std::size_t>(m), static_cast<std::size_t>(ef_construction), 1);
+  index->addPoint(s.data.data(), 0);
+  parallel_for(n - 1, cores, [&](std::size_t i, int) { index->addPoint(s.data.data() + (i + 1) * dims, i + 1); });
+  cpu_s = t.cpu();
+  return index;
+}
+
+// hnswlib's k' nearest of every query frame (with `ef`), refined to K_l as FLANN's are.
+Lists run_hnsw(const Reference& ref, const neighbours::PoseSpace& space, const Space& s, HnswIndex& index, int kprime,
+               int ef, int cores, Row& row) {
+  const std::size_t q = ref.frames.size(), dims = static_cast<std::size_t>(s.dims);
+  index.setEf(static_cast<std::size_t>(ef));
+  Lists out(q);
+  const FastRefiner refine{ref, space};
+  std::vector<std::vector<int>> idx(static_cast<std::size_t>(cores));
+  std::vector<std::vector<float>> dist(static_cast<std::size_t>(cores));
+  Timer t;
+  parallel_for(q, cores, [&](std::size_t i, int w) {
+    const int l = ref.frames[i];
+    auto found = index.searchKnn(s.data.data() + static_cast<std::size_t>(l) * dims, static_cast<std::size_t>(kprime));
+    std::vector<int>& ids = idx[static_cast<std::size_t>(w)];
+    std::vector<float>& ds = dist[static_cast<std::size_t>(w)];
+    ids.clear(), ds.clear();
+    for (; !found.empty(); found.pop()) {
+      ds.push_back(found.top().first);
+      ids.push_back(static_cast<int>(found.top().second));
+    }
+    refine(l, ids.data(), ds.data(), static_cast<int>(ids.size()), out[i]);
+  });
+  row.cpu_s = t.cpu();
+  row.wall_s = t.wall();
+  row.method = "hnsw";
+  row.params = s.name + " M " + std::to_string(index.M_) + ", efC " + std::to_string(index.ef_construction_) + ", k' " +
+               std::to_string(kprime) + ", ef " + std::to_string(ef) + ", cores " + std::to_string(cores);
+  return out;
+}
+#endif
+
 struct FlannSetting {
   std::string space, index;
   flann::IndexParams params;
@@ -501,6 +563,42 @@ void check_against_brute_force(const Reference& ref, const Lists& exact, int cou
               t.wall());
 }
 
+#ifdef GMG_HAVE_HNSWLIB
+// One hnswlib graph searched for each k' with ascending ef until the recall reaches 0.95; rows printed.
+void search_hnsw(double hours, const Options& o, const Reference& ref, const Lists& exact,
+                 const neighbours::PoseSpace& space, const Space& s, HnswIndex& index, double build_s) {
+  const int n = ref.features.frame_count();
+  for (const int kprime : o.kprime) {
+    for (const int ef : o.ef) {
+      if (ef < kprime) continue;
+      Row r;
+      const Lists found = run_hnsw(ref, space, s, index, kprime, ef, 1, r);
+      r.build_s = build_s;
+      r.recall = candidate_recall(found, exact);
+      print_row(hours, n, r);
+      if (r.recall < 0.95) continue;
+      std::printf("    projected to all %d frames: build + query CPU %.1f s\n", n, projected(r, ref));
+      break;
+    }
+  }
+}
+
+// hnswlib's graphs (o.hnsw_spaces x o.hnsw_graphs): each a graph over all frames (its build CPU, on
+// 2 threads, in the build column, with the space and the refinement's pose space), searched on 1 core.
+void compare_hnsw(double hours, const Options& o, const Reference& ref, const Lists& exact,
+                  const neighbours::PoseSpace& space, double space_s) {
+  for (const std::string& space_name : o.hnsw_spaces) {
+    const Space s = space_name == "full" ? full_space(ref) : proj_space(ref);
+    hnswlib::L2Space l2(static_cast<std::size_t>(s.dims));
+    for (const auto& [m, ef_construction] : o.hnsw_graphs) {
+      double build_cpu = 0;
+      const std::unique_ptr<HnswIndex> index = build_hnsw(l2, s, m, ef_construction, 2, build_cpu);
+      search_hnsw(hours, o, ref, exact, space, s, *index, space_s + s.build_s + build_cpu);
+    }
+  }
+}
+#endif
+
 void run_length(double hours, const Options& o) {
   Timer total;
   const Reference ref = make_reference(hours, o);
@@ -584,7 +682,12 @@ void run_length(double hours, const Options& o) {
     }
   }
 
-  // 3. The fastest of each at recall >= 0.95, again.
+#ifdef GMG_HAVE_HNSWLIB
+  // 3. hnswlib.
+  compare_hnsw(hours, o, ref, exact, space, space_s);
+#endif
+
+  // 4. The fastest of each at recall >= 0.95, again.
   if (o.repeat > 0) repeat_fastest(o, ref, exact, ours_best, flann_best, space, space_s);
   double load[3] = {0, 0, 0};
   getloadavg(load, 3);
@@ -625,6 +728,20 @@ int main(int argc, char** argv) {
       o.cluster_hours = std::atof(value);
     } else if (std::strcmp(key, "--autotune-hours") == 0) {
       o.autotune_hours = std::atof(value);
+    } else if (std::strcmp(key, "--hnsw") == 0) {
+      o.hnsw_spaces = parse_words(value);
+    } else if (std::strcmp(key, "--hnsw-graphs") == 0) {
+      o.hnsw_graphs.clear();
+      for (const std::string& w : parse_words(value)) {
+        const std::size_t x = w.find('x');
+        if (x == std::string::npos) {
+          std::fprintf(stderr, "bench_flann: --hnsw-graphs wants MxEFC, e.g. 16x100, not %s\n", w.c_str());
+          return 2;
+        }
+        o.hnsw_graphs.emplace_back(std::atoi(w.substr(0, x).c_str()), std::atoi(w.substr(x + 1).c_str()));
+      }
+    } else if (std::strcmp(key, "--ef") == 0) {
+      o.ef = parse_ints(value);
     } else {
       std::fprintf(stderr, "bench_flann: unknown option %s\n", key);
       return 2;
