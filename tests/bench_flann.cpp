@@ -599,6 +599,30 @@ void compare_hnsw(double hours, const Options& o, const Reference& ref, const Li
 }
 #endif
 
+// How much of the next frame's exact K_l the frame's own gives, shifted a frame on (r + 1), and
+// within `near` frames of a shifted one: how good a seed a frame's candidates are for the next
+// frame's search. Over the consecutive query frames (the blocks), pooled.
+void print_temporal_coherence(const Reference& ref, const Lists& exact) {
+  constexpr int kNear = 2;
+  std::size_t total = 0, shifted = 0, near = 0;
+  for (std::size_t i = 0; i + 1 < ref.frames.size(); ++i) {
+    if (ref.frames[i + 1] != ref.frames[i] + 1) continue;
+    const std::vector<int>& now = exact[i];  // ascending
+    for (const int r : exact[i + 1]) {
+      ++total;
+      const auto at = std::lower_bound(now.begin(), now.end(), r - 1 - kNear);
+      if (at == now.end() || *at > r - 1 + kNear) continue;
+      ++near;
+      shifted += std::binary_search(now.begin(), now.end(), r - 1) ? 1 : 0;
+    }
+  }
+  if (total == 0) return;
+  std::printf(
+      "  next frame's exact K_l found in this frame's shifted a frame on: %.1f%%, within %d frames of one: %.1f%%\n",
+      100.0 * static_cast<double>(shifted) / static_cast<double>(total), kNear,
+      100.0 * static_cast<double>(near) / static_cast<double>(total));
+}
+
 void run_length(double hours, const Options& o) {
   Timer total;
   const Reference ref = make_reference(hours, o);
@@ -616,6 +640,7 @@ void run_length(double hours, const Options& o) {
   std::printf("  exact K_l: %.1f members per query frame on average, %.1f%% of frames have the full %zu\n",
               static_cast<double>(members) / static_cast<double>(exact.size()),
               100.0 * static_cast<double>(full) / static_cast<double>(exact.size()), bound);
+  print_temporal_coherence(ref, exact);
   if (o.brute > 0) check_against_brute_force(ref, exact, o.brute);
   std::fflush(stdout);
 
