@@ -57,6 +57,17 @@ class SynthPipeline : public ::testing::Test {
     dir_ = nullptr;
   }
   static std::string file(const std::string& name) { return dir_->file(name); }
+  // The test speech's events, analysed for graph `g` as `gmg reenact` does.
+  static SpeechEvents test_events(const MotionGraph& g, const Config& cfg) {
+    return speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  }
+  // Where a graph file's key poses start (graph/graph_io.cpp): after the part the checksum covers
+  // (its length the header's last field, at byte 20), their u64 count and zero padding to a page.
+  static std::size_t key_poses_offset(const std::string& bytes) {
+    std::uint64_t summed = 0;
+    std::memcpy(&summed, bytes.data() + 20, 8);
+    return (28 + summed + 8 + 4095) / 4096 * 4096;
+  }
   static gmg::testing::TempDir* dir_;
 };
 gmg::testing::TempDir* SynthPipeline::dir_ = nullptr;
@@ -81,8 +92,7 @@ TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
   const MotionGraph g = graph_load(file("ref.gmg"));
   Config cfg;
   cfg.search.init = InitMode::Random;
-  const SpeechEvents ev =
-      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const SpeechEvents ev = test_events(g, cfg);
   auto motion_bytes = [&](std::uint64_t seed) {
     cfg.seed = seed;
     return bvh_format(reenact_events(g, ev, cfg).motion);
@@ -95,8 +105,7 @@ TEST_F(SynthPipeline, DifferentSeedsGiveDifferentMotions) {
 TEST_F(SynthPipeline, DefaultPlannerVariesWithTheSeed) {
   const MotionGraph g = graph_load(file("ref.gmg"));
   Config cfg;
-  const SpeechEvents ev =
-      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const SpeechEvents ev = test_events(g, cfg);
   cfg.seed = 1;
   const std::string a = bvh_format(reenact_events(g, ev, cfg).motion);
   cfg.seed = 2;
@@ -248,8 +257,7 @@ TEST_F(SynthPipeline, AReenactmentChecksAndReadsOnlyTheMotionItPlays) {
   Config cfg;
   const MotionGraph g = graph_load(file("ref.gmg"), MotionCheck::OnUse);
   ASSERT_NE(g.unchecked_motion, nullptr);
-  const SpeechEvents ev =
-      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const SpeechEvents ev = test_events(g, cfg);
   const std::string intact = bvh_format(reenact_events(g, ev, cfg).motion);
   EXPECT_EQ(intact, bvh_format(reenact_events(graph_load(file("ref.gmg")), ev, cfg).motion));
   const std::vector<std::uint8_t> checked = g.unchecked_motion->checked;
@@ -258,14 +266,11 @@ TEST_F(SynthPipeline, AReenactmentChecksAndReadsOnlyTheMotionItPlays) {
   ASSERT_GT(played, 0);
   ASSERT_LT(played, static_cast<long>(checked.size())) << "the reenactment played every block: no test";
 
-  // The motion's place in the file (graph/graph_io.cpp): after the part the checksum covers (the
-  // header's last field), each array's u64 count, zero padding to a page boundary, its values: the
-  // key poses', then the rotations' and the translations'.
+  // The motion's place in the file (graph/graph_io.cpp): after the key poses, each array's u64
+  // count, zero padding to a page boundary, its values: the rotations', then the translations'.
   std::string bytes = read_file_bytes(file("ref.gmg"));
-  std::uint64_t summed = 0;
-  std::memcpy(&summed, bytes.data() + 20, 8);
   const std::size_t joints = g.motion.skeleton.joints.size(), frames = static_cast<std::size_t>(g.frame_count());
-  const std::size_t keys_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t keys_at = key_poses_offset(bytes);
   const std::size_t rotations_at = (keys_at + g.key_poses.size() * 8 + 8 + 4095) / 4096 * 4096;
   const std::size_t translations_at = (rotations_at + frames * joints * 32 + 8 + 4095) / 4096 * 4096;
   ASSERT_EQ(bytes.size(), translations_at + frames * joints * 24 + 8);
@@ -318,19 +323,15 @@ TEST_F(SynthPipeline, AReenactmentChecksTheKeyPosesItRanks) {
   Config cfg;
   const MotionGraph g = graph_load(file("ref.gmg"), MotionCheck::OnUse);
   ASSERT_NE(g.unchecked_key_poses, nullptr);
-  const SpeechEvents ev =
-      speech_analyse({file("test.wav"), file("test.tsv")}, g.motion.fps, -1, cfg.graph, lexicon_for(cfg.graph));
+  const SpeechEvents ev = test_events(g, cfg);
   const std::string intact = bvh_format(reenact_events(g, ev, cfg).motion);
   const std::vector<std::uint8_t> checked = g.unchecked_key_poses->checked;
   const std::size_t ranked =
       static_cast<std::size_t>(std::find(checked.begin(), checked.end(), std::uint8_t{1}) - checked.begin());
   ASSERT_LT(ranked, checked.size());
 
-  // The key poses' place in the file (graph/graph_io.cpp): after the part the checksum covers.
   std::string bytes = read_file_bytes(file("ref.gmg"));
-  std::uint64_t summed = 0;
-  std::memcpy(&summed, bytes.data() + 20, 8);
-  const std::size_t keys_at = (28 + summed + 8 + 4095) / 4096 * 4096;
+  const std::size_t keys_at = key_poses_offset(bytes);
   const std::size_t dims = g.key_poses.size() / checked.size();
   ASSERT_EQ(bytes.compare(keys_at, g.key_poses.size() * 8,
                           std::string(reinterpret_cast<const char*>(g.key_poses.data()), g.key_poses.size() * 8)),
