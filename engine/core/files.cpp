@@ -145,6 +145,12 @@ void rename_into_place(const std::string& temp, const std::string& path) {
 void BlockWriter::write(const void* data, std::size_t size) {
   const char* p = static_cast<const char*>(data);
   while (size > 0) {
+    if (buffer_.empty() && size >= block_) {  // a whole block at a block boundary: no copy
+      out_.write(p, static_cast<std::streamsize>(block_));
+      p += block_;
+      size -= block_;
+      continue;
+    }
     if (buffer_.capacity() < block_) buffer_.reserve(block_);
     const std::size_t n = std::min(size, block_ - buffer_.size());
     buffer_.insert(buffer_.end(), p, p + n);
