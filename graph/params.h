@@ -68,6 +68,14 @@ struct GraphParams {
 inline constexpr int kAnnChecksFrames = 108000;
 inline constexpr double kAnnChecksGrowth = 0.25;
 
+// The search reads each candidate's positions and velocity from a copy of the rows kept in the
+// k-d tree's leaf order (a leaf's frames then lie side by side instead of across the whole
+// reference), when that copy needs at most this many bytes. The copy is twice the positions (the
+// velocities precomputed), so above the budget the frame-order rows are read instead: the graph is
+// the same either way, bit for bit. 1 GiB holds 25 joints to 15 h and 55 joints to 7 h at 30 fps; the copy
+// saves about 6 % of the build's CPU at 4 h (docs/performance.md) and nothing below an hour.
+inline constexpr long long kLeafOrderRowsBytes = 1LL << 30;
+
 // Throws gmg::Error naming the first key out of range.
 void graph_params_validate(const GraphParams& params);
 

@@ -94,7 +94,7 @@ void PoseSpace::finish() {
   abs_error_ = static_cast<float>(1e-5 * (params_.lambda_pos + 4.0 * params_.lambda_vel) * max_p) + 1e-30f;
 }
 
-void PoseSpace::set_order(const std::vector<int>& order) {
+void PoseSpace::set_order(const std::vector<int>& order, long long max_row_bytes) {
   if (order.empty()) return;
   Eigen::MatrixXf proj(proj_.rows(), n_);
   slot_.assign(static_cast<std::size_t>(n_), 0);
@@ -103,6 +103,23 @@ void PoseSpace::set_order(const std::vector<int>& order) {
     slot_[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])] = s;
   }
   proj_.swap(proj);
+  const long long bytes = 2LL * padded_ * static_cast<long long>(sizeof(float)) * n_;
+  if (bytes > max_row_bytes) return;
+  rows_ = RowChunks(2 * static_cast<std::size_t>(padded_));
+  rows_.resize(static_cast<std::size_t>(n_));
+  for (int s = 0; s < n_; ++s) {
+    const int f = order[static_cast<std::size_t>(s)];
+    const auto [a, b] = store_->velocity_frames(f);
+    float* row = rows_.row(static_cast<std::size_t>(s));
+    const float* x = position(f);
+    const float* xa = position(a);
+    const float* xb = position(b);
+    for (int d = 0; d < padded_; ++d) {
+      row[d] = x[d];
+      row[padded_ + d] = xa[d] - xb[d];
+    }
+  }
+  positions_ = RowChunks(static_cast<std::size_t>(padded_));
 }
 
 Eigen::MatrixXd PoseSpace::principal_axes(const Eigen::MatrixXd& cov) {

@@ -38,8 +38,11 @@ class PoseSpace {
   void add_clip(const PoseFeatures& clip);
   void finish();
 
-  // Puts frame order[s]'s projections in slot s (frame order when `order` is empty).
-  void set_order(const std::vector<int>& order);
+  // Puts frame order[s]'s projections in slot s (frame order when `order` is empty), and, when
+  // they fit in `max_row_bytes`, the positions and velocities too (ordered_rows(): approx_slots
+  // then reads them; the frame-order positions are freed). Either way approx() gives the same
+  // value, bit for bit.
+  void set_order(const std::vector<int>& order, long long max_row_bytes = kLeafOrderRowsBytes);
 
   int frames() const { return n_; }
   static constexpr int kProjections = 16;    // rows of projections(): 8 of positions, 8 of velocities
@@ -56,6 +59,7 @@ class PoseSpace {
   // and of the velocities (each velocity the difference of two frames' float positions), summed
   // in the fixed order.
   float approx(int l, int r) const {
+    if (rows_.rows() != 0) return approx_slots(slot(l), slot(r));
     const float* pl = position(l);
     const float* pr = position(r);
     const auto [al, bl] = store_->velocity_frames(l);
@@ -75,6 +79,28 @@ class PoseSpace {
     sv.store(v);
     return lp_ * std::sqrt(sum16(p)) + lv_ * std::sqrt(sum16(v));
   }
+  // approx() of the frames in slots a and b, read from the rows in slot order (ordered_rows()
+  // only): the same floats summed in the same order, so the same value bit for bit.
+  float approx_slots(int a, int b) const {
+    const float* xa = rows_.row(static_cast<std::size_t>(a));
+    const float* xb = rows_.row(static_cast<std::size_t>(b));
+    Sixteen sp = Sixteen::zero(), sv = Sixteen::zero();
+    for (int j = 0; j < padded_; j += 16) {
+      sp.add_square_of_difference(Sixteen::at(xa + j), Sixteen::at(xb + j));
+      sv.add_square_of_difference(Sixteen::at(xa + padded_ + j), Sixteen::at(xb + padded_ + j));
+    }
+    alignas(64) float p[16], v[16];
+    sp.store(p);
+    sv.store(v);
+    return lp_ * std::sqrt(sum16(p)) + lv_ * std::sqrt(sum16(v));
+  }
+  // Asks for slot s's row (its positions and velocity, side by side) to be brought into cache.
+  void prefetch_slot(int s) const {
+    const char* row = reinterpret_cast<const char*>(rows_.row(static_cast<std::size_t>(s)));
+    for (int at = 0; at < 2 * padded_ * static_cast<int>(sizeof(float)); at += 64) __builtin_prefetch(row + at);
+  }
+  // Whether set_order() kept the rows in slot order (approx_slots and prefetch_slot need them).
+  bool ordered_rows() const { return rows_.rows() != 0; }
   // Asks for the rows approx(l, r) reads of frame r to be brought into cache: its positions and
   // the previous frame's (its velocity's other frame, except at a clip start): a leaf's frames lie
   // across the whole reference in frame order, and fetching them all before the first approx
@@ -124,6 +150,7 @@ class PoseSpace {
   int n_ = 0, dims_ = 0, padded_ = 0, kp_ = 0, kv_ = 0;
   float lp_ = 1, lv_ = 1, abs_error_ = 0;
   RowChunks positions_;  // padded_ floats a frame, frame order
+  RowChunks rows_;       // by slot: positions then velocities
   // Sums for the principal axes: of the positions and velocities, and of their outer products.
   Eigen::VectorXd mean_p_, sum_p_, sum_v_;
   Eigen::MatrixXd outer_p_, outer_v_;

@@ -114,9 +114,10 @@ unsigned CandidateTree::leaf_within(int begin, const float* q, float radius) con
 
 // Member r of K_l at float distance d: gathered, and with a bound the k smallest distances so far
 // tracked, since once k are in, nothing past the k-th (plus float error) can belong to K_l.
-void CandidateTree::take(int l, int r, double theta, Gathered& g, CandidateScratch& s) const {
+void CandidateTree::take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const {
+  const int r = order_[static_cast<std::size_t>(sr)];
   if (!allowed_(l, r)) return;
-  const float d = space_.approx(l, r);
+  const float d = space_.ordered_rows() ? space_.approx_slots(sl, sr) : space_.approx(l, r);
   if (d > g.radius() || !space_.within(l, r, d, theta)) return;
   g.add(d, r);
   if (k_ == 0) return;
@@ -140,7 +141,7 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
   }
   const float* q = space_.projections().col(space_.slot(l)).data();
   s.kth.clear();
-  descend(l, q, theta, g, s);
+  descend(l, space_.slot(l), q, theta, g, s);
   g.resolve(l, out);
 }
 
@@ -172,7 +173,7 @@ void CandidateTree::find_run(int first, int count, std::vector<CandidateScratch>
 // search, and each frame now takes a few more frames, from leaves opened for the others.
 void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, std::vector<Candidate>* out) const {
   struct Query {
-    int l = 0;
+    int l = 0, sl = 0;
     double theta = 0.0;
     const float* q = nullptr;
     CandidateScratch* s = nullptr;
@@ -195,7 +196,8 @@ void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, 
     s.kth.clear();
     x.l = l;
     x.theta = theta;
-    x.q = space_.projections().col(space_.slot(l)).data();
+    x.sl = space_.slot(l);
+    x.q = space_.projections().col(x.sl).data();
     x.s = &s;
     x.out = &out[i];
     reach = std::max(reach, x.g->radius());
@@ -238,7 +240,7 @@ void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, 
       for (int i = 0; i < active; ++i) {
         Query& x = queries[i];
         for (unsigned within = leaf_within(node->begin, x.q, x.g->radius()) & mask; within != 0; within &= within - 1)
-          take(x.l, order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))], x.theta, *x.g, *x.s);
+          take(x.l, x.sl, node->begin + __builtin_ctz(within), x.theta, *x.g, *x.s);
         reach = std::max(reach, x.g->radius());
       }
     }
@@ -249,7 +251,7 @@ void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, 
 // Best first: from the open node with the lowest bound down into the nearer child at every level
 // (the farther one waits among the open nodes), then through the leaf reached, until no open node
 // is within reach or max_checks frames were examined (0: no budget).
-void CandidateTree::descend(int l, const float* q, double theta, Gathered& g, CandidateScratch& s) const {
+void CandidateTree::descend(int l, int sl, const float* q, double theta, Gathered& g, CandidateScratch& s) const {
   s.open.clear();
   // (Equal bounds leave the heap in an order fixed by the sequence of pushes: the same in every build.)
   auto later = [](const OpenNode& a, const OpenNode& b) { return a.bound > b.bound; };
@@ -276,10 +278,15 @@ void CandidateTree::descend(int l, const float* q, double theta, Gathered& g, Ca
     checks += node->end - node->begin;
     // The leaf's frames within reach, as bits (most are not), their rows asked for before any is read.
     const unsigned bits = leaf_within(node->begin, q, g.radius()) & ((1u << (node->end - node->begin)) - 1u);
+    for (unsigned within = bits; within != 0; within &= within - 1) {
+      const int sr = node->begin + __builtin_ctz(within);
+      if (space_.ordered_rows())
+        space_.prefetch_slot(sr);
+      else
+        space_.prefetch(order_[static_cast<std::size_t>(sr)]);
+    }
     for (unsigned within = bits; within != 0; within &= within - 1)
-      space_.prefetch(order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))]);
-    for (unsigned within = bits; within != 0; within &= within - 1)
-      take(l, order_[static_cast<std::size_t>(node->begin + __builtin_ctz(within))], theta, g, s);
+      take(l, sl, node->begin + __builtin_ctz(within), theta, g, s);
     if (max_checks_ > 0 && checks >= max_checks_) break;
   }
 }

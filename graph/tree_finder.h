@@ -58,8 +58,8 @@ class CandidateTree {
   // Which frames of the leaf starting at slot `begin` have a lower bound within `radius`: bit i
   // for frame begin + i (bits past the leaf's own frames are meaningless).
   unsigned leaf_within(int begin, const float* q, float radius) const;
-  void take(int l, int r, double theta, Gathered& g, CandidateScratch& s) const;
-  void descend(int l, const float* q, double theta, Gathered& g, CandidateScratch& s) const;
+  void take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const;
+  void descend(int l, int sl, const float* q, double theta, Gathered& g, CandidateScratch& s) const;
 
   PoseSpace space_;
   const std::vector<double>& theta_;

@@ -47,6 +47,28 @@ float fixed_order_norm(const std::vector<float>& x, const std::vector<float>& y)
   return std::sqrt(sum8(s) + sum8(s + 8));
 }
 
+// approx(l, r) as the fixed order gives it, for features of 45 dimensions (padded to 48) in clips
+// starting at `starts`: positions centred on the mean and rounded to float; velocities the
+// difference of two of them, the next frame's at a clip start.
+float expected_approx(const PoseFeatures& f, const std::vector<int>& starts, float lp, float lv, int l, int r) {
+  const int dims = static_cast<int>(f.positions.rows());
+  const std::size_t padded = (static_cast<std::size_t>(dims) + 15) / 16 * 16;
+  const Eigen::VectorXd mean = f.positions.rowwise().mean();
+  auto position = [&](int i) {
+    std::vector<float> out(padded, 0.0f);
+    for (int d = 0; d < dims; ++d) out[static_cast<std::size_t>(d)] = static_cast<float>(f.positions(d, i) - mean(d));
+    return out;
+  };
+  auto velocity = [&](int i) {
+    const bool start = std::find(starts.begin(), starts.end(), i) != starts.end();
+    const std::vector<float> a = position(start ? i + 1 : i), b = position(start ? i : i - 1);
+    std::vector<float> out(padded);
+    for (std::size_t d = 0; d < out.size(); ++d) out[d] = a[d] - b[d];
+    return out;
+  };
+  return lp * fixed_order_norm(position(l), position(r)) + lv * fixed_order_norm(velocity(l), velocity(r));
+}
+
 TEST(PoseSpace, FloatDistanceIsSummedInTheFixedOrder) {
   const int dims = 45, n = 50;  // 45 values padded to 48: three rounds of the sixteen sums
   const PoseFeatures f = random_features(dims, n, 3, {0, 20});  // two clips
@@ -54,27 +76,38 @@ TEST(PoseSpace, FloatDistanceIsSummedInTheFixedOrder) {
   p.lambda_pos = 1.0;
   p.lambda_vel = 2.0;
   neighbours::PoseSpace space(f, p);
-  // Positions centred on the mean and rounded to float; velocities the difference of two of them,
-  // the next frame's at a clip start.
-  const Eigen::VectorXd mean = f.positions.rowwise().mean();
-  auto position = [&](int i) {
-    std::vector<float> out(48, 0.0f);
-    for (int d = 0; d < dims; ++d) out[static_cast<std::size_t>(d)] = static_cast<float>(f.positions(d, i) - mean(d));
-    return out;
-  };
-  auto velocity = [&](int i) {
-    const bool start = i == 0 || i == 20;
-    const std::vector<float> a = position(start ? i + 1 : i), b = position(start ? i : i - 1);
-    std::vector<float> out(48);
-    for (std::size_t d = 0; d < out.size(); ++d) out[d] = a[d] - b[d];
-    return out;
-  };
   for (int l = 0; l < n; l += 3)
-    for (int r = 0; r < n; r += 5) {
-      const float expected =
-          1.0f * fixed_order_norm(position(l), position(r)) + 2.0f * fixed_order_norm(velocity(l), velocity(r));
-      EXPECT_TRUE(same_bits(space.approx(l, r), expected)) << l << " " << r;
+    for (int r = 0; r < n; r += 5)
+      EXPECT_TRUE(same_bits(space.approx(l, r), expected_approx(f, {0, 20}, 1.0f, 2.0f, l, r))) << l << " " << r;
+}
+
+// A search tree's order puts frame order[s] in slot s. Within the row budget the positions and
+// velocities move to slot order too (a leaf's rows side by side); over it they stay in frame order.
+// Both give the fixed order's distance, bit for bit, by frame and by slot.
+TEST(PoseSpace, SlotOrderRowsGiveTheSameDistanceBitForBit) {
+  const int dims = 45, n = 50;
+  const std::vector<int> starts = {0, 17, 40};
+  const PoseFeatures f = random_features(dims, n, 11, starts);
+  GraphParams p;
+  p.lambda_pos = 1.5;
+  p.lambda_vel = 0.5;
+  std::vector<int> order(static_cast<std::size_t>(n));
+  for (int s = 0; s < n; ++s) order[static_cast<std::size_t>(s)] = (s * 7 + 3) % n;  // 7 is prime to 50
+  neighbours::PoseSpace in_slots(f, p), in_frames(f, p);
+  in_slots.set_order(order);
+  in_frames.set_order(order, 0);
+  ASSERT_TRUE(in_slots.ordered_rows());
+  ASSERT_FALSE(in_frames.ordered_rows());
+  for (int l = 0; l < n; l += 2)
+    for (int r = 0; r < n; r += 3) {
+      const float expected = expected_approx(f, starts, 1.5f, 0.5f, l, r);
+      EXPECT_EQ(in_slots.slot(l), in_frames.slot(l));
+      EXPECT_TRUE(same_bits(in_slots.approx_slots(in_slots.slot(l), in_slots.slot(r)), expected)) << l << " " << r;
+      EXPECT_TRUE(same_bits(in_slots.approx(l, r), expected)) << l << " " << r;
+      EXPECT_TRUE(same_bits(in_frames.approx(l, r), expected)) << l << " " << r;
     }
+  // Frame order[s] is in slot s.
+  for (int s = 0; s < n; ++s) EXPECT_EQ(in_slots.slot(order[static_cast<std::size_t>(s)]), s);
 }
 
 TEST(FeatureStore, DistanceIsPoseDistanceBitForBitAcrossClips) {
