@@ -73,7 +73,7 @@ inline constexpr double kAnnChecksGrowth = 0.25;
 // reference), when that copy needs at most this many bytes. The copy is twice the positions (the
 // velocities precomputed), so above the budget the frame-order rows are read instead: the graph is
 // the same either way, bit for bit. 1 GiB holds 25 joints to 15 h and 55 joints to 7 h at 30 fps; the copy
-// saves about 6 % of the build's CPU at 4 h (docs/performance.md) and nothing below an hour.
+// saves about 6 % of the build's CPU at 4 h (docs/performance.md) and nothing at 15 min.
 inline constexpr long long kLeafOrderRowsBytes = 1LL << 30;
 
 // Throws gmg::Error naming the first key out of range.
