@@ -7,11 +7,13 @@
 //
 // One search finds it (graph/tree_finder.h): a k-d tree over principal-axis projections of the
 // pose space (graph/pose_space.h), whose boxes and points bound d from below, searched best first
-// and refined by d. Searched to the end (NeighbourSearch::Exact) it finds K_l exactly; with a
-// budget (Approximate: at most ann_checks frames examined per frame; under Auto a budget that
-// grows with the log of the length, search_checks) its time per frame grows little with the
-// reference, and it misses a few far members (recall >= 0.95 of the exact pairs on synthetic
-// speakers up to 19 h; docs/performance.md).
+// and refined by d. Searched to the end (NeighbourSearch::Exact) it finds K_l exactly. With a
+// budget (Approximate: ann_checks frames per frame; under Auto a budget that grows with the log of
+// the length, search_checks) the 16 frames of each leaf of the tree are searched together, by one
+// walk that examines at most kLeafWalkChecks times the budget (graph/params.h): its time per frame
+// grows little with the reference, and it misses a few far members (0.99 of the exact pairs on a
+// synthetic speaker of 4 h; docs/performance.md). Either way a frame's K_l does not depend on which
+// other frames are asked for with it, nor on the threads.
 // Distances are screened in single precision; any decision within float error of a threshold or
 // of the k-th distance is taken on d in double, so the exact search gives K_l exactly.
 #pragma once
@@ -63,6 +65,9 @@ struct CandidateScratch {
   std::vector<float> kth;                    // the k smallest member distances so far (a max-heap)
   std::vector<Candidate> items;              // the members so far
   std::vector<std::pair<double, int>> ties;  // members within float error of the k-th, in double
+  // A budgeted find's: the scratch and the candidates of every frame of the frame's leaf.
+  std::vector<CandidateScratch> leaf;
+  std::vector<std::vector<Candidate>> leaf_found;
 };
 
 // K_l of any frame, from any thread (const; each thread brings its own scratch). `features`,
@@ -85,11 +90,13 @@ class CandidateSearch {
   // leaves one after another (a frame's neighbours are its neighbours' too), where frame order
   // jumps across the whole tree at every query.
   const std::vector<int>& query_order() const;
-  // out = K_l by ascending r, each with d(l, r) in single precision.
+  // out = K_l by ascending r, each with d(l, r) in single precision. (With a budget, this searches
+  // the frames of l's whole leaf: ask for many frames with find_run.)
   void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
-  // out[i] = K_l of frame query_order()[first + i], i < count, as find gives it; the exact search
-  // takes 16 neighbouring frames at a time together, sharing their walk through the tree.
-  // `scratch` is one thread's (grown as needed); out grows to at least count.
+  // out[i] = K_l of frame query_order()[first + i], i < count, as find gives it; the search takes 16
+  // neighbouring frames at a time together, sharing their walk through the tree (with a budget, the
+  // frames of a leaf: runs that start at a multiple of 16 waste nothing). `scratch` is one thread's
+  // (grown as needed); out grows to at least count.
   void find_run(int first, int count, std::vector<CandidateScratch>& scratch,
                 std::vector<std::vector<Candidate>>& out) const;
   // An upper bound of |float d - d| for distances up to d.

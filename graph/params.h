@@ -68,6 +68,16 @@ struct GraphParams {
 inline constexpr int kAnnChecksFrames = 108000;
 inline constexpr double kAnnChecksGrowth = 0.25;
 
+// The build asks for the frames of each leaf of the k-d tree (16 neighbouring poses) together: one
+// walk of the tree for the leaf, nearest box first, that examines at most kLeafWalkChecks times the
+// per-frame budget above, and every frame of the leaf takes its members from every leaf the walk
+// opens. A frame then sees more of the tree for less work than its own walk of the budget: on a
+// synthetic speaker of 4 h at 3,000 checks, the frames' own walks find 0.97 of the exact candidates
+// and 0.92 of the exact edges (a missed candidate changes what pruning 2 keeps after it), the
+// leaf's walk of 6 x 3,000 finds 0.99 and 0.98 for about a tenth more time in the search (4 x: 0.98
+// and 0.95, 8 x: 0.997 and 0.994). docs/performance.md, "Searching a leaf's frames together".
+inline constexpr int kLeafWalkChecks = 6;
+
 // The search reads each candidate's positions and velocity from a copy of the rows kept in the
 // k-d tree's leaf order (a leaf's frames then lie side by side instead of across the whole
 // reference), when that copy needs at most this many bytes. The copy is twice the positions (the

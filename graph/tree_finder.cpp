@@ -133,6 +133,13 @@ void CandidateTree::take(int l, int sl, int sr, double theta, Gathered& g, Candi
 }
 
 void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out) const {
+  if (max_checks_ > 0) {
+    // What find_run finds for l: the walk of l's leaf.
+    const int slot = space_.slot(l), leaf = slot / kLeaf * kLeaf;
+    find_run(leaf, std::min(kLeaf, frames() - leaf), s.leaf, s.leaf_found);
+    out = s.leaf_found[static_cast<std::size_t>(slot - leaf)];
+    return;
+  }
   const double theta = theta_[static_cast<std::size_t>(l)];
   Gathered g(space_, k_, space_.radius(theta), s.items, s.ties);
   if (g.radius() < 0) {
@@ -149,16 +156,26 @@ void CandidateTree::find_run(int first, int count, std::vector<CandidateScratch>
                              std::vector<std::vector<Candidate>>& out) const {
   if (scratch.size() < static_cast<std::size_t>(kGroup)) scratch.resize(static_cast<std::size_t>(kGroup));
   if (out.size() < static_cast<std::size_t>(count)) out.resize(static_cast<std::size_t>(count));
-  for (int i = 0; i < count;) {
-    const int slot = first + i;
-    if (max_checks_ > 0) {
-      find(order_[static_cast<std::size_t>(slot)], scratch.front(), out[static_cast<std::size_t>(i)]);
-      ++i;
+  if (max_checks_ == 0) {
+    // Searched to the end, a frame finds the same in any group: groups from `first` on.
+    for (int i = 0; i < count; i += kGroup)
+      find_group(first + i, std::min(count - i, kGroup), 0, scratch.data(), &out[static_cast<std::size_t>(i)]);
+    return;
+  }
+  // The budget decides what a frame finds, so its group is always its whole leaf; a leaf the run
+  // covers only in part is searched into spare lists.
+  const long budget = kLeafWalkChecks * max_checks_;
+  std::vector<std::vector<Candidate>> spare;
+  for (int leaf = first / kLeaf * kLeaf; leaf < first + count; leaf += kLeaf) {
+    const int size = std::min(kLeaf, frames() - leaf);
+    if (leaf >= first && leaf + size <= first + count) {
+      find_group(leaf, size, budget, scratch.data(), &out[static_cast<std::size_t>(leaf - first)]);
       continue;
     }
-    const int n = std::min(count - i, kGroup);
-    find_group(slot, n, scratch.data(), &out[static_cast<std::size_t>(i)]);
-    i += n;
+    spare.resize(static_cast<std::size_t>(kLeaf));
+    find_group(leaf, size, budget, scratch.data(), spare.data());
+    for (int s = std::max(leaf, first); s < std::min(leaf + size, first + count); ++s)
+      out[static_cast<std::size_t>(s - first)].swap(spare[static_cast<std::size_t>(s - leaf)]);
   }
 }
 
@@ -171,7 +188,12 @@ void CandidateTree::find_run(int first, int count, std::vector<CandidateScratch>
 // members are decided by the final radius, which the k nearest set whatever the order they were
 // taken in. The walk and the nodes' bounds are shared: they were half of a seven-minute reference's
 // search, and each frame now takes a few more frames, from leaves opened for the others.
-void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, std::vector<Candidate>* out) const {
+// With max_checks the walk stops once it has examined that many frames (for all of them): each
+// frame then has what the leaves opened so far hold. Those are the leaves nearest the group's box,
+// so a frame sees the region around it, and more: its far
+// members, which a budget misses, are often nearer the other frames of the group.
+void CandidateTree::find_group(int first, int count, long max_checks, CandidateScratch* scratch,
+                               std::vector<Candidate>* out) const {
   struct Query {
     int l = 0, sl = 0;
     double theta = 0.0;
@@ -213,6 +235,7 @@ void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, 
       box_hi[d] = std::max(box_hi[d], queries[i].q[d]);
     }
   if (active > 0) {
+    long checks = 0;
     std::vector<OpenNode>& open = scratch[0].open;
     open.clear();
     auto later = [](const OpenNode& a, const OpenNode& b) { return a.bound > b.bound; };
@@ -243,6 +266,8 @@ void CandidateTree::find_group(int first, int count, CandidateScratch* scratch, 
           take(x.l, x.sl, node->begin + __builtin_ctz(within), x.theta, *x.g, *x.s);
         reach = std::max(reach, x.g->radius());
       }
+      checks += node->end - node->begin;
+      if (max_checks > 0 && checks >= max_checks) break;
     }
   }
   for (int i = 0; i < active; ++i) queries[i].g->resolve(queries[i].l, *queries[i].out);

@@ -29,8 +29,9 @@ class CandidateTree {
   // K_l by ascending r, with float distances (neighbours.h).
   void find(int l, CandidateScratch& scratch, std::vector<Candidate>& out) const;
   // K_l of the frames in slots first .. first + count - 1 (out[i] for frame order()[first + i]):
-  // with the exact search, kGroup neighbouring frames at a time searched together (find_group);
-  // with a budget, one by one (the budget is each frame's own, and decides what it finds).
+  // kGroup neighbouring frames at a time searched together (find_group). With a budget, the groups
+  // are the tree's leaves, whole whatever the run, and each leaf's walk examines at most
+  // kLeafWalkChecks * max_checks frames: the budget is the leaf's, and decides what its frames find.
   void find_run(int first, int count, std::vector<CandidateScratch>& scratch,
                 std::vector<std::vector<Candidate>>& out) const;
 
@@ -38,9 +39,11 @@ class CandidateTree {
   // bounds of a leaf's frames are computed as vectors (as many frames at a time as the registers
   // hold), each frame's in the order of PoseSpace::lower_bound_slots.
   static constexpr int kLeaf = 16;
-  // Frames the exact search takes together (find_group): a leaf's worth. 4 and 8 were slower on a
-  // seven-minute reference, 32 and 64 no faster.
+  // Frames the search takes together (find_group): a leaf's worth. For the exact search 4 and 8
+  // were slower on a seven-minute reference, 32 and 64 no faster; the budgeted one takes whole
+  // leaves.
   static constexpr int kGroup = 16;
+  static_assert(kGroup == kLeaf, "the budgeted search walks the tree once for each leaf");
 
  private:
   struct Node {
@@ -54,7 +57,8 @@ class CandidateTree {
   // box_bound(node, q) for every q in `other`'s box (each gap is at most that of q, and the sums
   // and roots are monotone).
   float box_box_bound(int node, const float* other_lo, const float* other_hi) const;
-  void find_group(int first, int count, CandidateScratch* scratch, std::vector<Candidate>* out) const;
+  // max_checks: frames the walk examines at most (0: to the end).
+  void find_group(int first, int count, long max_checks, CandidateScratch* scratch, std::vector<Candidate>* out) const;
   // Which frames of the leaf starting at slot `begin` have a lower bound within `radius`: bit i
   // for frame begin + i (bits past the leaf's own frames are meaningless).
   unsigned leaf_within(int begin, const float* q, float radius) const;

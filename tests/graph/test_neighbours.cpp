@@ -159,6 +159,26 @@ TEST(Neighbours, ApproximateSearchedExhaustivelyGivesTheExactEdgeSet) {
   EXPECT_GT(recall, 0.0);
 }
 
+// With a budget the frames of each leaf of the tree share one walk of kLeafWalkChecks times the
+// per-frame budget: a budget of a sixth of the frames (kLeafWalkChecks 6) lets that walk examine
+// every frame, so every frame finds its exact candidates, where a walk of the per-frame budget
+// alone would stop after a sixth of them.
+TEST(Neighbours, ALeafsFramesShareAWalkOfSixTimesTheirBudget) {
+  static_assert(kLeafWalkChecks == 6, "the test's budgets are a sixth of the frames");
+  const PoseFeatures f = looping_motion(600, 3);
+  GraphParams p;
+  p.l_pn = 2;
+  const std::vector<double> theta = continuity_thresholds(f, one_run(600), p);
+  const auto truth = candidate_sets(f, theta, p, NeighbourSearch::Exact);
+  p.ann_checks = 100;  // 6 x 100 = 600 frames: the whole reference
+  EXPECT_EQ(candidate_sets(f, theta, p, NeighbourSearch::Approximate), truth);
+  // A walk of 100 frames (what a budget of 100 examined alone) stops early on some leaves.
+  p.ann_checks = 17;  // 6 x 17 = 102 frames: the walk stops after 7 leaves
+  const double recall = candidate_recall(candidate_sets(f, theta, p, NeighbourSearch::Approximate), truth);
+  EXPECT_LT(recall, 1.0) << "a walk of 100 frames must miss members";
+  EXPECT_GT(recall, 0.0);
+}
+
 TEST(Neighbours, UnboundedIsThePapersAnalysis) {
   // max_transitions 0: every candidate under the threshold goes through both prunings (the
   // definition of brute_analysis with no bound), whichever search finds them.
@@ -257,7 +277,7 @@ std::size_t expect_runs_find_what_frames_alone_find(const CandidateSearch& finde
 
 // The exact search of several neighbouring frames together (find_run) finds for each what its own
 // search finds, for runs that start and end anywhere in the tree's order; so does the budgeted one,
-// which searches them one by one.
+// which searches each frame with the other frames of its leaf however the runs cut the leaves.
 TEST(Neighbours, FramesSearchedTogetherFindWhatEachFindsAlone) {
   const PoseFeatures f = looping_motion(700, 7);
   for (const NeighbourSearch search : {NeighbourSearch::Exact, NeighbourSearch::Approximate}) {
