@@ -23,8 +23,9 @@
 // 1. Ours: CandidateSearch (Approximate) with ann_checks 0 (exact: the reference K_l),
 //    2000, 1000, 500 (--ours-checks), on 1 worker. (With a budget, find searches the frame with
 //    the other 15 frames of its leaf, as the build does; asked frame by frame, as here, each leaf
-//    is walked once per frame asked, so the budgeted rows' query times are an upper bound.) The exact reference is checked against a brute-force
-//    scan of all frames (in double) for `brute` of the query frames.
+//    is walked once per frame asked, so the budgeted rows' query times are an upper bound.) The
+//    exact reference is checked against a brute-force scan of all frames (in double) for `brute`
+//    of the query frames.
 // 2. FLANN: d = lp ||dp|| + lv ||dv|| is a sum of two norms, which FLANN cannot search. It indexes
 //    one Euclidean space whose norm N bounds d from below:
 //      full: the features [lp (p - mean_p); lv (v - mean_v)] (rows that are 0 in every frame, the
