@@ -116,12 +116,14 @@ Rational fps_rational(double fps) {
 
 VideoEncoder::VideoEncoder(const EncoderSettings& settings) : settings_(settings) {
   std::string log_template = (std::filesystem::temp_directory_path() / "gmg_ffmpeg_XXXXXX").string();
-  const int log_fd = ::mkstemp(log_template.data());
+  const int log_fd = ::mkostemp(log_template.data(), O_CLOEXEC);
   if (log_fd < 0) throw Error(settings_.name + ": cannot create a temporary file for ffmpeg's messages");
-  log_path_ = log_template;
+  ::unlink(log_template.c_str());  // the open descriptors keep it: ffmpeg writes, log_tail() reads
+  log_fd_ = log_fd;
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
     ::close(log_fd);
+    log_fd_ = -1;
     throw Error(settings_.name + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
   }
   const std::vector<std::string> args = ffmpeg_arguments(settings_);
@@ -148,7 +150,6 @@ VideoEncoder::VideoEncoder(const EncoderSettings& settings) : settings_(settings
   }
   const int fork_error = errno;
   ::close(fds[0]);
-  ::close(log_fd);
   if (null_fd >= 0) ::close(null_fd);
   pipe_fd_ = fds[1];
   if (pid_ < 0) {
@@ -174,19 +175,25 @@ void VideoEncoder::stop() {
   }
   unregister_temporary_file(temp_slot_);
   temp_slot_ = -1;
-  if (!log_path_.empty()) {
-    std::error_code ec;
-    std::filesystem::remove(log_path_, ec);
-    log_path_.clear();
+  if (log_fd_ >= 0) ::close(log_fd_);
+  log_fd_ = -1;
+}
+
+std::string VideoEncoder::read_log() const {
+  std::string log;
+  if (log_fd_ < 0) return log;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t got = ::pread(log_fd_, buffer, sizeof buffer, static_cast<off_t>(log.size()));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    log.append(buffer, static_cast<std::size_t>(got));
   }
+  return log;
 }
 
 std::string VideoEncoder::log_tail() const {
-  std::string log;
-  try {
-    log = read_file_bytes(log_path_);
-  } catch (const Error&) {
-  }
+  const std::string log = read_log();
   std::vector<std::string> lines = split_lines(log);
   std::string out;
   const std::size_t from = lines.size() > 4 ? lines.size() - 4 : 0;
@@ -236,11 +243,7 @@ void VideoEncoder::finish() {
   pid_ = -1;
   // ffmpeg may end with 0 after failed writes (a full disk while it writes the trailer), so its
   // messages decide too: a video it could not write whole is no video.
-  std::string log;
-  try {
-    log = read_file_bytes(log_path_);
-  } catch (const Error&) {
-  }
+  const std::string log = read_log();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !write_failure(log).empty()) {
     std::error_code ec;
     std::filesystem::remove(settings_.output, ec);

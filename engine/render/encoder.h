@@ -59,12 +59,15 @@ class VideoEncoder {
   [[noreturn]] void fail(const std::string& what);
   void stop();
   std::string log_tail() const;
+  std::string read_log() const;
 
   EncoderSettings settings_;
   pid_t pid_ = -1;
   int pipe_fd_ = -1;
   int temp_slot_ = -1;  // settings_.output in the interrupt registry (engine/core/files.h)
-  std::string log_path_;
+  // ffmpeg's messages (its stderr): a temporary file unlinked as soon as it is opened, so that
+  // nothing is left in the temporary directory even when gmg is killed; read through this fd.
+  int log_fd_ = -1;
 };
 
 }  // namespace gmg::render

@@ -752,6 +752,37 @@ void expect_no_temporaries(const fs::path& dir) {
     EXPECT_EQ(temporary_file_owner(e.path().filename().string()), 0) << "left: " << e.path();
 }
 
+// Points TMPDIR, for the gmg processes started meanwhile, at a folder of its own, to show what gmg
+// leaves in the temporary directory.
+class PrivateTmpdir {
+ public:
+  PrivateTmpdir() {
+    const char* was = std::getenv("TMPDIR");
+    had_ = was != nullptr;
+    if (had_) was_ = was;
+    ::setenv("TMPDIR", dir_.path().c_str(), 1);
+  }
+  ~PrivateTmpdir() {
+    if (had_) {
+      ::setenv("TMPDIR", was_.c_str(), 1);
+    } else {
+      ::unsetenv("TMPDIR");
+    }
+  }
+  PrivateTmpdir(const PrivateTmpdir&) = delete;
+  PrivateTmpdir& operator=(const PrivateTmpdir&) = delete;
+  std::vector<std::string> left() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_.path())) names.push_back(e.path().filename().string());
+    return names;
+  }
+
+ private:
+  TempDir dir_;
+  bool had_ = false;
+  std::string was_;
+};
+
 // 23: every command ends by the signal it got, after removing its temporaries: SIGINT 130,
 // SIGTERM 143, SIGHUP 129, as a shell reports a process killed by it (so a loop around gmg stops
 // on Ctrl-C). render also stops its ffmpeg; batch first writes its summary.
@@ -782,11 +813,13 @@ TEST_F(HostileInput, Case23InterruptsEndEveryCommandByTheirSignal) {
       const fs::path once = args[0] == "batch"    ? at("batch_out/pairs.csv")
                             : args[0] == "render" ? at("ffmpeg.pid")
                                                   : "";
+      const PrivateTmpdir tmp;
       const ChildRun r = run_gmg(args, work_.path(), 120, args[0] == "render" ? 300 : 150, sig, once);
       const std::string what = args[0] + " with " + std::to_string(sig);
       EXPECT_EQ(r.code, 128 + sig) << what << ": " << r.err;
       EXPECT_TRUE(r.signalled) << what << ": ended by exit(" << r.code << "), not by the signal";
       expect_no_temporaries(work_.path());
+      EXPECT_EQ(tmp.left(), std::vector<std::string>{}) << what;
       if (fs::exists(at("batch_out"))) expect_no_temporaries(at("batch_out"));
       EXPECT_FALSE(fs::exists(at("long.gmg")) || fs::exists(at("out.bvh")) || fs::exists(at("video.mp4"))) << what;
       if (args[0] == "render") {
@@ -810,8 +843,11 @@ TEST_F(HostileInput, Case24KilledRenderTakesFfmpegAndIsCleanedUpAfter) {
   spec.seed = 6;
   synth_write(synth_speaker(spec), work_.path().string(), "long");
   const std::string ffmpeg = ffmpeg_recording_its_pid(work_.path());
+  const PrivateTmpdir tmp;
   const ChildRun killed = run_gmg({"render", "long.bvh", "--audio", "long.wav", "-o", "video.mp4", "--ffmpeg", ffmpeg},
                                   work_.path(), 120, 1500, SIGKILL, at("ffmpeg.pid"));
+  // ffmpeg's messages went to a file in the temporary directory that gmg unlinks once it is open.
+  EXPECT_EQ(tmp.left(), std::vector<std::string>{}) << "a killed render left files in the temporary directory";
   ASSERT_EQ(killed.code, 128 + SIGKILL) << killed.err;
   ASSERT_TRUE(fs::exists(at("ffmpeg.pid")));
   EXPECT_TRUE(ends_within(std::stoi(read_file_bytes(at("ffmpeg.pid"))), 5.0)) << "ffmpeg outlived a killed gmg";

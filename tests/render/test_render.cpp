@@ -297,8 +297,19 @@ TEST_F(RenderVideo, AnInterruptedRenderLeavesNoFile) {
   argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // gmg's own temporary files (ffmpeg's messages) go to a folder of their own, to be looked at.
+  gmg::testing::TempDir tmp;
+  const char* saved_tmpdir = std::getenv("TMPDIR");
+  const std::string saved = saved_tmpdir ? saved_tmpdir : "";
+  ::setenv("TMPDIR", tmp.path().c_str(), 1);
   pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, GMG_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  const int spawned = posix_spawn(&pid, GMG_BINARY, &actions, nullptr, argv.data(), environ);
+  if (saved_tmpdir) {
+    ::setenv("TMPDIR", saved.c_str(), 1);
+  } else {
+    ::unsetenv("TMPDIR");
+  }
+  ASSERT_EQ(spawned, 0);
   posix_spawn_file_actions_destroy(&actions);
   // Interrupt once ffmpeg has started writing its temporary file.
   bool writing = false;
@@ -314,6 +325,7 @@ TEST_F(RenderVideo, AnInterruptedRenderLeavesNoFile) {
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
   EXPECT_TRUE(contains(read_file_bytes(err), "gmg: error: " + out + ": interrupted")) << read_file_bytes(err);
   EXPECT_EQ(folder_listing(dir.path()), before);
+  EXPECT_TRUE(folder_listing(tmp.path()).empty()) << "a temporary file of gmg's outlived it";
 }
 
 TEST_F(RenderVideo, BadOutputNamesAndSizesAreRefused) {
