@@ -22,12 +22,13 @@ std::vector<double> continuity_thresholds(const PoseFeatures& f, const std::vect
 using ContinuityProgress = std::function<void(int, int)>;
 
 // How many of a frame's pruning-1 survivors, nearest first, the parallel search keeps for pruning
-// 2 with `frames` frames: all of them (K_l's bound, candidate_limit) while they fit in 256 MiB,
-// fewer for longer references, never fewer than 16. Pruning 2 drops a survivor only when an edge
-// from the previous l_pn frames already makes the same jump, but on dense references it drops many;
-// a frame whose kept survivors run out before it is settled is searched again, which cost a third
-// more searches on a seven-minute reference with 16 kept. 0 with no bound (every survivor is kept,
-// in a list). The edges do not depend on it.
+// 2 with `frames` frames: all of them (K_l's bound, candidate_limit) while they fit in 512 MiB
+// (524,288 frames, 4.8 h at 30 fps, at the default bound), fewer for longer references, never
+// fewer than 16. Pruning 2 drops a survivor only when an edge from the previous l_pn frames already
+// makes the same jump, but on dense references it drops many; a frame whose kept survivors run out
+// before it is settled is searched again, in the serial pass, which cost a third more searches on
+// a seven-minute reference with 16 kept. 0 with no bound (every survivor is kept, in a list). The
+// edges do not depend on it.
 std::size_t kept_survivors(int frames, const GraphParams& params);
 
 // The whole analysis over frames with the given run structure: each frame's candidates K_l

@@ -312,12 +312,14 @@ TEST(Neighbours, TheEdgesDoNotDependOnHowManySurvivorsAreKept) {
   }
 }
 
-TEST(Neighbours, SurvivorsKeptAreAllOfThemWithin256MiBAndAtLeast16) {
+TEST(Neighbours, SurvivorsKeptAreAllOfThemWithin512MiBAndAtLeast16) {
   GraphParams p;  // max_transitions 4, candidates_per_transition 32: K_l holds at most 128
   EXPECT_EQ(kept_survivors(12810, p), 128u);
-  // 256 MiB of 8-byte survivors over 838,860 frames: 40.00002 a frame.
-  EXPECT_EQ(kept_survivors(838860, p), 40u);
-  EXPECT_EQ(kept_survivors(2052000, p), 16u);  // 16.35
+  EXPECT_EQ(kept_survivors(524288, p), 128u);  // 512 MiB of 8-byte survivors: 128 a frame
+  EXPECT_EQ(kept_survivors(524289, p), 127u);
+  // 512 MiB over 838,860 frames: 80.00004 a frame.
+  EXPECT_EQ(kept_survivors(838860, p), 80u);
+  EXPECT_EQ(kept_survivors(2052000, p), 32u);  // 32.7
   EXPECT_EQ(kept_survivors(100000000, p), 16u);
   p.max_transitions = 10;  // K_l up to 320: a frame's count is one byte
   EXPECT_EQ(kept_survivors(1000, p), 255u);
