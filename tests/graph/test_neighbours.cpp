@@ -344,8 +344,8 @@ void expect_recall(const Motion& m, int ann_checks) {
   const std::vector<double> theta = continuity_thresholds(f, one_run(f.frame_count()), p);
   const double recall = candidate_recall(candidate_sets(f, theta, p, NeighbourSearch::Approximate),
                                          candidate_sets(f, theta, p, NeighbourSearch::Exact));
-  std::cout << "recall of the exact candidate set: " << recall << " (" << f.frame_count() << " frames, "
-            << ann_checks << " checks a frame)\n";
+  std::cout << "recall of the exact candidate set: " << recall << " (" << f.frame_count() << " frames, " << ann_checks
+            << " checks a frame)\n";
   EXPECT_LT(recall, 1.0) << "the budget must bind";
   EXPECT_GE(recall, 0.95);
 }
