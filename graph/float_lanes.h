@@ -50,6 +50,21 @@ inline unsigned lanes_at_most(Floats x, float limit) {
 #endif
 }
 
+// Bit i set where lane i of x is <= lane i of limit.
+inline unsigned lanes_at_most(Floats x, Floats limit) {
+#if defined(__AVX512F__)
+  return _mm512_cmp_ps_mask(x, limit, _CMP_LE_OQ);
+#elif defined(__AVX__)
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LE_OQ)));
+#elif defined(__SSE__)
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(x, limit)));
+#else
+  unsigned bits = 0;
+  for (int i = 0; i < kLanes; ++i) bits |= (x[i] <= limit[i] ? 1u : 0u) << i;
+  return bits;
+#endif
+}
+
 inline Floats load(const float* p) {
   Floats v;
   std::memcpy(&v, p, sizeof v);

@@ -112,6 +112,25 @@ unsigned CandidateTree::leaf_within(int begin, const float* q, float radius) con
   return bits;
 }
 
+unsigned CandidateTree::leaf_reached(int node, const float* q, const float* radii) const {
+  const float* lo = lo_.data() + static_cast<std::size_t>(node) * kDims;
+  const float* hi = hi_.data() + static_cast<std::size_t>(node) * kDims;
+  unsigned bits = 0;
+  for (int c = 0; c < kGroup; c += kLanes) {
+    Floats sp = {}, sv = {};
+    for (int d = 0; d < kDims; ++d) {
+      const Floats x = load(q + static_cast<std::ptrdiff_t>(d * kGroup + c));
+      const Floats below = lo[d] - x, above = x - hi[d];
+      Floats gap = below > above ? below : above;
+      gap = gap > Floats{} ? gap : Floats{};
+      (d < 8 ? sp : sv) += gap * gap;
+    }
+    const Floats lb = space_.lambda_pos() * square_root(sp) + space_.lambda_vel() * square_root(sv);
+    bits |= lanes_at_most(lb, load(radii + c)) << c;
+  }
+  return bits;
+}
+
 // Member r of K_l at float distance d: gathered, and with a bound the k smallest distances so far
 // tracked, since once k are in, nothing past the k-th (plus float error) can belong to K_l.
 void CandidateTree::take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const {
@@ -234,6 +253,15 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
       box_lo[d] = std::min(box_lo[d], queries[i].q[d]);
       box_hi[d] = std::max(box_hi[d], queries[i].q[d]);
     }
+  // The frames' projections dimension by dimension, and their radii (-1 past the active frames:
+  // no bound is within it), for leaf_reached.
+  alignas(64) float q_by_dim[kDims * kGroup];
+  alignas(64) float radii[kGroup];
+  for (int i = 0; i < kGroup; ++i) {
+    const Query& x = queries[std::min(i, std::max(active - 1, 0))];
+    radii[i] = i < active ? x.g->radius() : -1.0f;
+    for (int d = 0; d < kDims; ++d) q_by_dim[d * kGroup + i] = i < active ? x.q[d] : 0.0f;
+  }
   if (active > 0) {
     long checks = 0;
     std::vector<OpenNode>& open = scratch[0].open;
@@ -259,13 +287,16 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
       }
       if (node->left >= 0) continue;
       const unsigned mask = (1u << (node->end - node->begin)) - 1u;
-      reach = -1.0f;
-      for (int i = 0; i < active; ++i) {
+      // Only the frames the leaf's box is within reach of look at its frames (most are not).
+      const int leaf = static_cast<int>(node - nodes_.data());
+      for (unsigned reached = leaf_reached(leaf, q_by_dim, radii); reached != 0; reached &= reached - 1) {
+        const int i = __builtin_ctz(reached);
         Query& x = queries[i];
         for (unsigned within = leaf_within(node->begin, x.q, x.g->radius()) & mask; within != 0; within &= within - 1)
           take(x.l, x.sl, node->begin + __builtin_ctz(within), x.theta, *x.g, *x.s);
-        reach = std::max(reach, x.g->radius());
+        radii[i] = x.g->radius();
       }
+      reach = *std::max_element(radii, radii + active);
       checks += node->end - node->begin;
       if (max_checks > 0 && checks >= max_checks) break;
     }

@@ -62,6 +62,12 @@ class CandidateTree {
   // Which frames of the leaf starting at slot `begin` have a lower bound within `radius`: bit i
   // for frame begin + i (bits past the leaf's own frames are meaningless).
   unsigned leaf_within(int begin, const float* q, float radius) const;
+  // Which of kGroup frames can have a member in leaf node `node`: bit i when the lower bound between
+  // the leaf's box and frame i is within radii[i]. `q` holds the frames' projections dimension by
+  // dimension (q[d * kGroup + i]). The bound is summed as leaf_within sums a frame's, from gaps no
+  // larger than the frame's, so it is at most the bound of every frame of the leaf: a frame whose
+  // bit is clear has none of the leaf's frames within its radius.
+  unsigned leaf_reached(int node, const float* q, const float* radii) const;
   void take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const;
   void descend(int l, int sl, const float* q, double theta, Gathered& g, CandidateScratch& s) const;
 
