@@ -5,22 +5,31 @@
 namespace gmg::neighbours {
 
 Gathered::Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items,
-                   std::vector<std::pair<double, int>>& ties)
-    : space_(space), k_(k), radius_(radius), items_(items), ties_(ties) {
+                   std::vector<float>& kth, std::vector<std::pair<double, int>>& ties)
+    : space_(space), k_(k), radius_(radius), items_(items), kth_(kth), ties_(ties) {
   items_.clear();
+  kth_.clear();
 }
 
 void Gathered::add(float d, int r) {
   items_.push_back({d, r});
-  if (k_ && items_.size() >= 2 * k_ + 32) compact();
+  if (k_ == 0) return;
+  if (kth_.size() < k_) {
+    kth_.push_back(d);
+    std::push_heap(kth_.begin(), kth_.end());
+  } else if (d < kth_.front()) {
+    std::pop_heap(kth_.begin(), kth_.end());
+    kth_.back() = d;
+    std::push_heap(kth_.begin(), kth_.end());
+  }
+  if (kth_.size() == k_) limit(kth_radius(space_, kth_.front()));
+  if (items_.size() >= 2 * k_ + 32) compact();
 }
 
-// Keeps the members within the radius of the k-th nearest so far (a few past k): the list stays
-// short however many frames lie under the threshold.
+// Drops the members past the radius of the k-th nearest so far (all but a few past k): the list
+// stays short however many frames lie under the threshold. (Which ones are kept, not their order,
+// decides K_l: resolve sorts them.)
 void Gathered::compact() {
-  std::nth_element(items_.begin(), items_.begin() + static_cast<std::ptrdiff_t>(k_ - 1), items_.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
-  limit(kth_radius(space_, items_[k_ - 1].d));
   items_.erase(std::remove_if(items_.begin(), items_.end(), [&](const Candidate& c) { return c.d > radius_; }),
                items_.end());
 }

@@ -31,13 +31,15 @@ inline float kth_radius(const PoseSpace& s, float kth) { return kth + 2.02f * s.
 // while the search adds more, and gives K_l at the end.
 class Gathered {
  public:
-  // `items` and `ties` are the caller's (a thread's scratch), cleared here; radius < 0: no member.
+  // `items`, `kth` and `ties` are the caller's (a thread's scratch), cleared here; radius < 0: no
+  // member.
   Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items,
-           std::vector<std::pair<double, int>>& ties);
+           std::vector<float>& kth, std::vector<std::pair<double, int>>& ties);
   float radius() const { return radius_; }
 
   // A member at float distance d; with a bound, the radius shrinks to the k-th nearest member's
-  // (plus float error) once k are in: none farther can belong to K_l.
+  // (plus float error) as soon as k are in, and after every member after that: none farther can
+  // belong to K_l. (A search reading the radius between members then prunes with the tightest.)
   void add(float d, int r);
   // The radius a search may use: at most the current one.
   void limit(float radius) { radius_ = radius < radius_ ? radius : radius_; }
@@ -54,6 +56,7 @@ class Gathered {
   std::size_t k_;
   float radius_;
   std::vector<Candidate>& items_;
+  std::vector<float>& kth_;  // the k smallest member distances so far (a max-heap)
   std::vector<std::pair<double, int>>& ties_;
 };
 

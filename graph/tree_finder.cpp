@@ -131,24 +131,14 @@ unsigned CandidateTree::leaf_reached(int node, const float* q, const float* radi
   return bits;
 }
 
-// Member r of K_l at float distance d: gathered, and with a bound the k smallest distances so far
-// tracked, since once k are in, nothing past the k-th (plus float error) can belong to K_l.
-void CandidateTree::take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const {
+// Member r of K_l at float distance d: gathered (which, with a bound, tightens the radius once k
+// are in).
+void CandidateTree::take(int l, int sl, int sr, double theta, Gathered& g) const {
   const int r = order_[static_cast<std::size_t>(sr)];
   if (!allowed_(l, r)) return;
   const float d = space_.ordered_rows() ? space_.approx_slots(sl, sr) : space_.approx(l, r);
   if (d > g.radius() || !space_.within(l, r, d, theta)) return;
   g.add(d, r);
-  if (k_ == 0) return;
-  if (s.kth.size() < k_) {
-    s.kth.push_back(d);
-    std::push_heap(s.kth.begin(), s.kth.end());
-  } else if (d < s.kth.front()) {
-    std::pop_heap(s.kth.begin(), s.kth.end());
-    s.kth.back() = d;
-    std::push_heap(s.kth.begin(), s.kth.end());
-  }
-  if (s.kth.size() == k_) g.limit(kth_radius(space_, s.kth.front()));
 }
 
 void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out) const {
@@ -160,13 +150,12 @@ void CandidateTree::find(int l, CandidateScratch& s, std::vector<Candidate>& out
     return;
   }
   const double theta = theta_[static_cast<std::size_t>(l)];
-  Gathered g(space_, k_, space_.radius(theta), s.items, s.ties);
+  Gathered g(space_, k_, space_.radius(theta), s.items, s.kth, s.ties);
   if (g.radius() < 0) {
     out.clear();
     return;
   }
   const float* q = space_.projections().col(space_.slot(l)).data();
-  s.kth.clear();
   descend(l, space_.slot(l), q, theta, g, s);
   g.resolve(l, out);
 }
@@ -217,7 +206,6 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
     int l = 0, sl = 0;
     double theta = 0.0;
     const float* q = nullptr;
-    CandidateScratch* s = nullptr;
     std::vector<Candidate>* out = nullptr;
     std::optional<Gathered> g;  // (Gathered holds references: made in place)
   };
@@ -229,17 +217,15 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
     const double theta = theta_[static_cast<std::size_t>(l)];
     CandidateScratch& s = scratch[i];
     Query& x = queries[active];
-    x.g.emplace(space_, k_, space_.radius(theta), s.items, s.ties);
+    x.g.emplace(space_, k_, space_.radius(theta), s.items, s.kth, s.ties);
     if (x.g->radius() < 0) {
       out[i].clear();
       continue;
     }
-    s.kth.clear();
     x.l = l;
     x.theta = theta;
     x.sl = space_.slot(l);
     x.q = space_.projections().col(x.sl).data();
-    x.s = &s;
     x.out = &out[i];
     reach = std::max(reach, x.g->radius());
     ++active;
@@ -293,7 +279,7 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
         const int i = __builtin_ctz(reached);
         Query& x = queries[i];
         for (unsigned within = leaf_within(node->begin, x.q, x.g->radius()) & mask; within != 0; within &= within - 1)
-          take(x.l, x.sl, node->begin + __builtin_ctz(within), x.theta, *x.g, *x.s);
+          take(x.l, x.sl, node->begin + __builtin_ctz(within), x.theta, *x.g);
         radii[i] = x.g->radius();
       }
       reach = *std::max_element(radii, radii + active);
@@ -342,7 +328,7 @@ void CandidateTree::descend(int l, int sl, const float* q, double theta, Gathere
         space_.prefetch(order_[static_cast<std::size_t>(sr)]);
     }
     for (unsigned within = bits; within != 0; within &= within - 1)
-      take(l, sl, node->begin + __builtin_ctz(within), theta, g, s);
+      take(l, sl, node->begin + __builtin_ctz(within), theta, g);
     if (max_checks_ > 0 && checks >= max_checks_) break;
   }
 }

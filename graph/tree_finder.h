@@ -68,7 +68,7 @@ class CandidateTree {
   // larger than the frame's, so it is at most the bound of every frame of the leaf: a frame whose
   // bit is clear has none of the leaf's frames within its radius.
   unsigned leaf_reached(int node, const float* q, const float* radii) const;
-  void take(int l, int sl, int sr, double theta, Gathered& g, CandidateScratch& s) const;
+  void take(int l, int sl, int sr, double theta, Gathered& g) const;
   void descend(int l, int sl, const float* q, double theta, Gathered& g, CandidateScratch& s) const;
 
   PoseSpace space_;

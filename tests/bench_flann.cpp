@@ -233,8 +233,9 @@ struct FastRefiner {
     out.clear();
     const double theta = ref.theta[static_cast<std::size_t>(l)];
     std::vector<Candidate> items, found;
+    std::vector<float> kth;
     std::vector<std::pair<double, int>> ties;
-    neighbours::Gathered g(space, k, space.radius(theta), items, ties);
+    neighbours::Gathered g(space, k, space.radius(theta), items, kth, ties);
     if (g.radius() < 0) return;
     const float reject = g.radius() * g.radius() * 1.001f + 1e-12f;
     for (int i = 0; i < count; ++i) {
