@@ -1,6 +1,9 @@
 #include "graph/pruning.h"
 
 #include <algorithm>
+#include <string>
+
+#include "engine/core/error.h"
 
 namespace gmg {
 
@@ -35,13 +38,23 @@ void prune_runs(const std::vector<Candidate>& candidates, int l_pn, std::vector<
       [&](std::size_t i) { out.push_back(candidates[i]); });
 }
 
+void EdgeIndex::add(int a, int b) {
+  if (a < 0 || a >= frames_ || static_cast<std::size_t>(a) + 1 < first_.size())
+    throw Error("EdgeIndex: edge from frame " + std::to_string(a) + " after frame " +
+                std::to_string(static_cast<long>(first_.size()) - 1) + " or outside 0.." + std::to_string(frames_ - 1));
+  while (first_.size() <= static_cast<std::size_t>(a)) first_.push_back(targets_.size());
+  targets_.push_back(b);
+}
+
 bool EdgeIndex::any(int a_lo, int a_hi, int b_lo, int b_hi) const {
   // One binary search per source in range: its targets are ascending.
-  const int n = static_cast<int>(targets_.size());
-  for (int a = std::max(0, a_lo); a <= std::min(n - 1, a_hi); ++a) {
-    const std::vector<int>& t = targets_[static_cast<std::size_t>(a)];
-    const auto it = std::lower_bound(t.begin(), t.end(), b_lo);
-    if (it != t.end() && *it <= b_hi) return true;
+  const int last = static_cast<int>(first_.size()) - 1;
+  for (int a = std::max(0, a_lo); a <= std::min(last, a_hi); ++a) {
+    const std::size_t fa = static_cast<std::size_t>(a);
+    const auto begin = targets_.begin() + static_cast<std::ptrdiff_t>(first_[fa]);
+    const auto end = a < last ? targets_.begin() + static_cast<std::ptrdiff_t>(first_[fa + 1]) : targets_.end();
+    const auto it = std::lower_bound(begin, end, b_lo);
+    if (it != end && *it <= b_hi) return true;
   }
   return false;
 }

@@ -18,11 +18,12 @@ void prune_runs(const std::vector<Candidate>& candidates, int l_pn, std::vector<
 // |b - l| <= l_pn (the same transition, or its reverse, already nearby).
 class EdgeIndex {
  public:
-  explicit EdgeIndex(int frames) : targets_(static_cast<std::size_t>(frames)) {}
+  explicit EdgeIndex(int frames) : frames_(frames) {}
 
-  // Adds a -> b. The targets of one source must come in ascending order (the survivors of one
-  // left frame are sorted), which `any` relies on.
-  void add(int a, int b) { targets_[static_cast<std::size_t>(a)].push_back(b); }
+  // Adds a -> b. Sources come in ascending order, and one source's targets too (the analysis adds
+  // each frame's survivors, sorted, after the frames before it): the edges are then one array by
+  // source, read in place by `any`. Throws gmg::Error for a source out of range or before the last.
+  void add(int a, int b);
 
   // True when an edge a -> b exists with a in [a_lo, a_hi] and b in [b_lo, b_hi].
   bool any(int a_lo, int a_hi, int b_lo, int b_hi) const;
@@ -33,7 +34,12 @@ class EdgeIndex {
   }
 
  private:
-  std::vector<std::vector<int>> targets_;
+  int frames_;
+  // Source a's targets are targets_[first_[a]] up to the next source's first (or the end, for the
+  // last source added); sources past the last added have none. (One array instead of a list per
+  // frame: the test reads the 2 l_pn + 1 sources around a far frame r, side by side in memory.)
+  std::vector<std::size_t> first_;
+  std::vector<int> targets_;
 };
 
 }  // namespace gmg

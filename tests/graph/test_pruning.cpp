@@ -1,6 +1,7 @@
 // Pruning 1 (runs of consecutive candidates) and pruning 2 (an edge already nearby).
 #include <gtest/gtest.h>
 
+#include "engine/core/error.h"
 #include "graph/pruning.h"
 
 namespace gmg {
@@ -30,6 +31,32 @@ TEST(Pruning, AnEdgeNearbyCoversCandidatesBothWays) {
   EXPECT_FALSE(index.covers(20, 48, 3));
   // Ranges past the ends of the graph are clipped, not read out of bounds.
   EXPECT_FALSE(index.covers(98, 2, 5));
+}
+
+TEST(Pruning, TheIndexReadsEachSourcesOwnTargets) {
+  EdgeIndex index(100);
+  index.add(3, 40);
+  index.add(7, 20);  // sources 4-6 have none
+  index.add(7, 90);
+  index.add(8, 41);
+  // 7's targets are 20 and 90, not 3's 40 nor 8's 41 beside them.
+  EXPECT_FALSE(index.any(7, 7, 30, 80));
+  EXPECT_TRUE(index.any(7, 7, 85, 95));
+  EXPECT_FALSE(index.any(4, 6, 0, 99));
+  EXPECT_TRUE(index.any(3, 3, 40, 40));
+  // The last source added reaches to the end; sources after it have none yet.
+  EXPECT_TRUE(index.any(8, 8, 41, 41));
+  EXPECT_FALSE(index.any(9, 99, 0, 99));
+}
+
+TEST(Pruning, TheIndexRefusesSourcesOutOfOrderOrRange) {
+  EdgeIndex index(10);
+  index.add(5, 1);
+  index.add(5, 2);  // the same source again: its next target
+  EXPECT_THROW(index.add(4, 1), Error);
+  EXPECT_THROW(index.add(10, 1), Error);
+  EXPECT_THROW(index.add(-1, 1), Error);
+  EXPECT_TRUE(index.any(5, 5, 2, 2));
 }
 
 }  // namespace
