@@ -33,8 +33,8 @@ class Gathered {
  public:
   // `items`, `kth` and `ties` are the caller's (a thread's scratch), cleared here; radius < 0: no
   // member.
-  Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items,
-           std::vector<float>& kth, std::vector<std::pair<double, int>>& ties);
+  Gathered(const PoseSpace& space, std::size_t k, float radius, std::vector<Candidate>& items, std::vector<float>& kth,
+           std::vector<std::pair<double, int>>& ties);
   float radius() const { return radius_; }
 
   // A member at float distance d; with a bound, the radius shrinks to the k-th nearest member's
