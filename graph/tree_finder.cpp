@@ -244,9 +244,8 @@ void CandidateTree::find_group(int first, int count, long max_checks, CandidateS
   alignas(64) float q_by_dim[kDims * kGroup];
   alignas(64) float radii[kGroup];
   for (int i = 0; i < kGroup; ++i) {
-    const Query& x = queries[std::min(i, std::max(active - 1, 0))];
-    radii[i] = i < active ? x.g->radius() : -1.0f;
-    for (int d = 0; d < kDims; ++d) q_by_dim[d * kGroup + i] = i < active ? x.q[d] : 0.0f;
+    radii[i] = i < active ? queries[i].g->radius() : -1.0f;
+    for (int d = 0; d < kDims; ++d) q_by_dim[d * kGroup + i] = i < active ? queries[i].q[d] : 0.0f;
   }
   if (active > 0) {
     long checks = 0;
