@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "engine/core/error.h"
 
@@ -41,26 +42,20 @@ void GraphBuilder::finish(MotionGraph& out_graph) {
   from_ = {};
   to_ = {};
   info_ = {};
-  out_graph.graph = graph_storage_from_arrays(std::move(nodes_), std::move(rowstart), std::move(targets));
+  out_graph.graph = GraphStorage(std::move(nodes_), std::move(rowstart), std::move(targets));
   out_graph.edge_weights = Samples<double>(std::move(weights));
 }
 
-GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<GraphVertex> targets) {
-  const std::size_t n = nodes.size();
-  if (rowstart.size() != n + 1 || rowstart.front() != 0 || rowstart.back() != targets.size())
+GraphStorage::GraphStorage(std::vector<NodeInfo> nodes, Samples<std::uint32_t> rowstart, Samples<GraphVertex> targets)
+    : nodes_(std::move(nodes)), row_starts_(std::move(rowstart)), targets_(std::move(targets)) {
+  const std::size_t n = nodes_.size();
+  const Samples<std::uint32_t>& rows = row_starts_;
+  if (rows.size() != n + 1 || rows.front() != 0 || rows.back() != targets_.size())
     throw Error("graph storage: row starts and targets disagree");
   for (std::size_t f = 0; f < n; ++f)
-    if (rowstart[f] > rowstart[f + 1]) throw Error("graph storage: row starts are not ascending");
-  for (const GraphVertex t : targets)
+    if (rows[f] > rows[f + 1]) throw Error("graph storage: row starts are not ascending");
+  for (const GraphVertex t : std::as_const(targets_))
     if (t >= n) throw Error("graph storage: an edge target is outside the graph");
-  // compressed_sparse_row_graph keeps its arrays in public members (Boost documents them as
-  // "should be private"): moving into them is the one way to build it without a copy.
-  GraphStorage g;
-  g.m_forward.m_rowstart = std::move(rowstart);
-  g.m_forward.m_column = std::move(targets);
-  g.m_vertex_properties = std::move(nodes);
-  return g;
 }
 
 }  // namespace gmg

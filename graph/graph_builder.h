@@ -1,5 +1,6 @@
-// Making the immutable graph storage (graph/motion_graph.h): from edges added in any order, or
-// from arrays already in compressed sparse row order (the file loader).
+// Making the immutable graph storage (graph/motion_graph.h GraphStorage) from edges added in any
+// order. (The file loader makes it from arrays already in compressed sparse row order; the
+// storage's constructor, defined here, checks them.)
 #pragma once
 
 #include <cstdint>
@@ -34,12 +35,5 @@ class GraphBuilder {
   std::vector<std::uint32_t> from_, to_;
   std::vector<EdgeInfo> info_;
 };
-
-// Moves arrays in compressed sparse row order into a storage without copying them: the
-// out-edges of frame f are rowstart[f] .. rowstart[f + 1] - 1 of targets. Throws gmg::Error when
-// they disagree (sizes, rowstart not ascending from 0 to the edge count, a target outside the
-// graph).
-GraphStorage graph_storage_from_arrays(std::vector<NodeInfo> nodes, std::vector<std::uint32_t> rowstart,
-                                       std::vector<GraphVertex> targets);
 
 }  // namespace gmg

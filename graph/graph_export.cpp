@@ -1,32 +1,47 @@
 // GraphViz DOT and GraphML export of a frame range (Boost's writers).
+#include <utility>
+#include <vector>
+
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/graphml.hpp>
 #include <boost/graph/graphviz.hpp>
 #include <boost/property_map/dynamic_property_map.hpp>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
-#include "graph/graph_builder.h"
 #include "graph/graph_io.h"
 
 namespace gmg {
 namespace {
 
-// The subgraph of frames [from, to) (vertex i = frame from + i): its storage and edge weights.
-MotionGraph subgraph(const MotionGraph& g, int from, int to) {
+// Boost.Graph's writers take one of its graphs: the exported part is copied into its compressed
+// sparse row graph (vertex i = frame from + i), the edges in the storage's order, so that edge
+// index i is weight[i]'s.
+using ExportGraph = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, boost::no_property,
+                                                       boost::no_property, GraphVertex, std::uint32_t>;
+struct Part {
+  ExportGraph graph;
+  std::vector<double> weight;
+};
+
+// The subgraph of frames [from, to): its edges inside the range.
+Part subgraph(const MotionGraph& g, int from, int to) {
   if (from < 0 || to > g.frame_count() || from >= to)
     throw Error("frame range " + std::to_string(from) + ":" + std::to_string(to) +
                 " is outside the graph's 0:" + std::to_string(g.frame_count()));
-  GraphBuilder sub(to - from);
-  for (int f = from; f < to; ++f) {
-    sub.node(f - from) = g.node(f);
-    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it) {
-      const int b = static_cast<int>(boost::target(*it, g.graph));
-      if (b >= from && b < to) sub.add_edge(f - from, b - from, EdgeInfo{g.weight(*it)});
+  std::vector<std::pair<GraphVertex, GraphVertex>> edges;
+  Part part;
+  for (int f = from; f < to; ++f)
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f))) {
+      const int b = static_cast<int>(g.graph.target(e));
+      if (b >= from && b < to) {
+        edges.emplace_back(static_cast<GraphVertex>(f - from), static_cast<GraphVertex>(b - from));
+        part.weight.push_back(g.weight(e));
+      }
     }
-  }
-  MotionGraph out;
-  sub.finish(out);
-  return out;
+  part.graph = ExportGraph(boost::edges_are_sorted, edges.begin(), edges.end(), static_cast<std::size_t>(to - from));
+  for (int f = from; f < to; ++f) part.graph[static_cast<std::size_t>(f - from)] = g.node(f);
+  return part;
 }
 
 std::string kind_names(std::uint8_t kinds) {
@@ -41,8 +56,8 @@ std::string kind_names(std::uint8_t kinds) {
 }  // namespace
 
 void graph_write_dot(const std::string& path, const MotionGraph& g, int from, int to) {
-  const MotionGraph part = subgraph(g, from, to);
-  const GraphStorage& sub = part.graph;
+  const Part part = subgraph(g, from, to);
+  const ExportGraph& sub = part.graph;
   write_file_atomically(path, [&](std::ostream& out) {
     boost::write_graphviz(
         out, sub,
@@ -59,19 +74,19 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
             os << ", shape=circle, color=darkgreen";
           os << "]";
         },
-        [&](std::ostream& os, const GraphStorage::edge_descriptor& e) {
+        [&](std::ostream& os, const ExportGraph::edge_descriptor& e) {
           if (is_natural_edge(boost::source(e, sub), boost::target(e, sub)))
             os << "[color=gray]";
           else
-            os << "[color=orange, label=\"" << part.weight(e) << "\"]";
+            os << "[color=orange, label=\"" << part.weight[e.idx] << "\"]";
         });
   });
 }
 
 void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
-  const MotionGraph part = subgraph(g, from, to);
-  const GraphStorage& sub = part.graph;
-  std::vector<double> weight(part.edge_weights.data(), part.edge_weights.data() + part.edge_weights.size());
+  const Part part = subgraph(g, from, to);
+  const ExportGraph& sub = part.graph;
+  std::vector<double> weight = part.weight;
   std::vector<int> frame(boost::num_vertices(sub));
   std::vector<std::string> kinds(boost::num_vertices(sub)), keyword(boost::num_vertices(sub));
   for (std::size_t v = 0; v < frame.size(); ++v) {

@@ -1,7 +1,8 @@
 // Saving and loading built graphs.
 //
-// File format (version 9; 8 has the key poses and the edge weights where the checksum covers them,
-// unaligned weights, 7 also lacks the key sketch), little-endian:
+// File format (version 10; 9 has unaligned row starts and targets, 8 also the key poses and the
+// edge weights where the checksum covers them and unaligned weights, 7 also lacks the key sketch),
+// little-endian:
 //   8 bytes  "GMGRAPH\0"
 //   u32      format version
 //   u64      payload size in bytes
@@ -15,13 +16,13 @@
 //            last the motion (write_motion): frames per block, each block's checksum, then the key
 //            poses, the rotations and the translations
 //   u64      checksum of the payload's first bytes (XXH3-64, engine/core/checksum.h)
-// The large parts are flat arrays in the layout they have in memory. The ten largest (the
-// motion's rotations and translations, the edge weights, the speech features, the motion
-// activity, the key nodes' junction poses and their sketch, the foot contacts, the beat end costs
-// and the body's face) each start on a 4096-byte boundary of the file (zero bytes pad up to it),
-// so a loaded graph reads all but the face in place from the file's mapping (engine/core/files.h
-// MappedFile): the pages of the file are shared by every process that reads it, and the load
-// keeps none of them resident but the edge weights'.
+// The large parts are flat arrays in the layout they have in memory. The twelve largest (the
+// motion's rotations and translations, the edges' row starts, targets and weights, the speech
+// features, the motion activity, the key nodes' junction poses and their sketch, the foot
+// contacts, the beat end costs and the body's face) each start on a 4096-byte boundary of the file
+// (zero bytes pad up to it), so a loaded graph reads all but the face in place from the file's
+// mapping (engine/core/files.h MappedFile): the pages of the file are shared by every process that
+// reads it, and the load keeps none of them resident but the edges'.
 //
 // A load checks the file's checksum and every field of the part it covers in one pass. The
 // motion, most of the file, has a checksum per block of frames instead, and the key poses one per
@@ -29,10 +30,11 @@
 // checked when first used (MotionCheck::OnUse, graph_check_frames and graph_check_key_poses), so
 // that a reenactment from a long reference reads only the stretches it plays and the poses it
 // ranks. The face is copied (SmplxBody holds its own arrays; a graph from BVH references has
-// none). The edges' targets and row starts and the nodes, whose values index other arrays, are
-// validated and copied (8 bytes an edge and a node), so a file rewritten in place under a running
-// gmg can give wrong values, never an out-of-bounds read; the mapping then reports the change
-// (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are not
+// none). The nodes are copied (8 bytes a node). The edges' row starts and targets, whose values
+// index other arrays, are validated by the load and then read in place through accessors that
+// keep every index inside its array (graph/motion_graph.h GraphStorage), so a file rewritten in
+// place under a running gmg can give wrong values, never an out-of-bounds read; the mapping then
+// reports the change (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are not
 // stored: the load takes them from the nodes and edges it reads. A file with another magic or
 // version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
 // reference facts, 6 one checksum over everything), a short or over-long payload or a wrong
@@ -535,10 +537,16 @@ void write_payload(Writer& w, const MotionGraph& g, std::uint32_t version) {
       w.str(g.graph[f].keyword.str());
     }
 
-  const auto& csr = g.graph.m_forward;
-  w.vec(csr.m_rowstart);
-  const std::size_t e = csr.m_column.size();
-  w.vec_of<std::uint32_t>(e, [&](std::size_t i) { return static_cast<std::uint32_t>(csr.m_column[i]); });
+  const Samples<std::uint32_t>& rows = g.graph.row_starts();
+  const Samples<GraphVertex>& targets = g.graph.targets();
+  const std::size_t e = targets.size();
+  if (version >= 10) {
+    w.aligned(rows);
+    w.aligned(targets);
+  } else {
+    w.vec_of<std::uint32_t>(rows.size(), [&](std::size_t i) { return rows[i]; });
+    w.vec_of<std::uint32_t>(e, [&](std::size_t i) { return targets[i]; });
+  }
   if (version >= 9)
     w.aligned(g.edge_weights);
   else
@@ -546,9 +554,8 @@ void write_payload(Writer& w, const MotionGraph& g, std::uint32_t version) {
   // Each edge's natural flag (is_natural_edge: derived, kept in the file so that a reader need not
   // know the rule).
   std::vector<std::uint8_t> natural(e);
-  for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
-    for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i)
-      natural[i] = is_natural_edge(f, csr.m_column[i]) ? 1 : 0;
+  for (std::size_t f = 0; f + 1 < rows.size(); ++f)
+    for (std::size_t i = rows[f]; i < rows[f + 1]; ++i) natural[i] = is_natural_edge(f, targets[i]) ? 1 : 0;
   w.vec(natural);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.speech_dims));
   w.aligned(g.speech.data(), g.speech.size());
@@ -806,11 +813,29 @@ std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames, MotionGraph& g) 
 // Format 9's weights are read in place (aligned, their pages kept mapped for the flags' pass that
 // follows); older formats' are copied.
 void read_edges(Reader& r, const Source& src, std::uint32_t version, std::vector<NodeInfo> nodes, MotionGraph& out) {
-  std::vector<std::uint32_t> rowstart = huge_vector<std::uint32_t>(r.count<std::uint32_t>());
-  r.items<std::uint32_t>(rowstart.size(), [&](std::size_t i, std::uint32_t s) { rowstart[i] = s; });
-  const std::size_t e = r.count<std::uint32_t>();
-  std::vector<GraphVertex> targets = huge_vector<GraphVertex>(e);
-  r.items<std::uint32_t>(e, [&](std::size_t i, std::uint32_t t) { targets[i] = t; });
+  Samples<std::uint32_t> rowstart;
+  Samples<GraphVertex> targets;
+  if (version >= 10) {
+    // Read in place (summed here, their pages kept mapped for the storage's checks and the flags'
+    // pass that follow).
+    auto in_place = [&](auto& into) {
+      using T = typename std::decay_t<decltype(into)>::value_type;
+      const auto [p, n] = r.aligned<T>();
+      r.template in_place<T>(
+          n, [](const T*, std::size_t, std::size_t) {}, false);
+      into = Samples<T>::view(p, n, src.owner);
+    };
+    in_place(rowstart);
+    in_place(targets);
+  } else {
+    std::vector<std::uint32_t> rows = huge_vector<std::uint32_t>(r.count<std::uint32_t>());
+    r.items<std::uint32_t>(rows.size(), [&](std::size_t i, std::uint32_t s) { rows[i] = s; });
+    std::vector<GraphVertex> columns = huge_vector<GraphVertex>(r.count<std::uint32_t>());
+    r.items<std::uint32_t>(columns.size(), [&](std::size_t i, std::uint32_t t) { columns[i] = t; });
+    rowstart = Samples<std::uint32_t>(std::move(rows));
+    targets = Samples<GraphVertex>(std::move(columns));
+  }
+  const std::size_t e = targets.size();
   // A weight is valid when finite and not negative: w - w is 0 and w >= 0 (NaN fails both).
   auto valid = [](double w) { return w - w == 0.0 && w >= 0.0; };
   bool invalid = false;
@@ -837,19 +862,21 @@ void read_edges(Reader& r, const Source& src, std::uint32_t version, std::vector
   }
   if (invalid) r.fail("an edge weight is negative or not finite");
   try {
-    out.graph = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets));
+    out.graph = GraphStorage(std::move(nodes), std::move(rowstart), std::move(targets));
   } catch (const Error& err) {
     r.fail(err.what());
   }
   if (r.count<std::uint8_t>() != e) r.fail("edge flags disagree with the edge count");
-  const auto& csr = out.graph.m_forward;
-  const double* weights = std::as_const(out.edge_weights).data();  // not data(): that copies a view
+  // (Const access: the non-const data() of a Samples copies a view.)
+  const std::uint32_t* rows = std::as_const(out.graph).row_starts().data();
+  const GraphVertex* columns = std::as_const(out.graph).targets().data();
+  const double* weights = std::as_const(out.edge_weights).data();
   double sum = 0.0;
   long transitions = 0;
   std::size_t source = 0;
   r.items<std::uint8_t>(e, [&](std::size_t i, std::uint8_t flag) {
-    while (i >= csr.m_rowstart[source + 1]) ++source;  // rows are ascending (checked above)
-    const bool natural = is_natural_edge(source, csr.m_column[i]);
+    while (i >= rows[source + 1]) ++source;  // rows are ascending (checked above)
+    const bool natural = is_natural_edge(source, columns[i]);
     const double weight = weights[i];
     if (natural != (flag != 0) || (natural && weight != 0))
       r.fail(natural ? "an edge from frame " + std::to_string(source) +

@@ -14,10 +14,12 @@ namespace gmg {
 // reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h),
 // 7 the XXH3 checksum (engine/core/checksum.h) and the motion last, with a checksum per block of
 // frames, 8 the key poses' sketch (graph/key_poses.h), 9 the key poses after the part the file's
-// checksum covers, with a checksum per key (checked when read: graph_check_key_poses). Files of
-// formats 7 and 8 are still read (7 without a sketch: a reenactment from them gives the same
-// motion, computing more junction costs; 7 and 8 have their key poses checked by every load).
-constexpr std::uint32_t kGraphFormatVersion = 9;
+// checksum covers, with a checksum per key (checked when read: graph_check_key_poses), 10 the
+// edges' row starts and targets aligned, read in place. Files of formats 7 to 9 are still read (7
+// without a sketch: a reenactment from them gives the same motion, computing more junction costs;
+// 7 and 8 have their key poses checked by every load; up to 9 the row starts and targets are
+// copied).
+constexpr std::uint32_t kGraphFormatVersion = 10;
 constexpr std::uint32_t kOldestGraphFormatRead = 7;
 
 // Writes atomically, in format `version` (kOldestGraphFormatRead to kGraphFormatVersion: 7 leaves

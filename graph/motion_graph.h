@@ -1,21 +1,23 @@
 // The gesture motion graph (paper 4.1): one node per reference frame, natural edges i -> i+1
 // inside continuous runs, unnatural edges where two frames are close enough to jump between.
 //
-// Stored as a Boost.Graph compressed_sparse_row_graph: vertex descriptor == global frame index,
-// one array of targets in source order, and beside it (MotionGraph::edge_weights) the edges'
-// weights in the same order, so a graph is a few flat arrays (12 bytes an edge), moves without
-// copying and loads at memory speed; a loaded graph reads the weights in place from its file. It
-// is immutable: graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
+// Stored in compressed sparse row form (GraphStorage): vertex == global frame index, one array of
+// row starts and one of targets in source order, and beside them (MotionGraph::edge_weights) the
+// edges' weights in the same order, so a graph is a few flat arrays (12 bytes an edge), moves
+// without copying, and a loaded graph reads all three in place from its file. It is immutable:
+// graph/graph_builder.h makes one from edges in any order. Out-edges of a frame keep the order
 // they were added in: the natural edge first, then transitions by ascending target. With
 // max_transitions (graph/params.h) edges grow linearly with frames.
 //
 // The steps that build it live in files named after them: features (pose features and d_pose),
 // key_nodes (onset, keyword and break nodes), breaks (capture jumps), continuity (thresholds and
 // candidate transitions), pruning (both prunings), build (the whole construction), graph_io
-// (save/load), graph_export (DOT/GraphML), stats (counts), graph_builder (the storage from edges),
-// neighbours (candidate transitions: exact pass and approximate index).
+// (save/load), graph_export (DOT/GraphML, through Boost.Graph's writers), stats (counts),
+// graph_builder (the storage from edges), neighbours (candidate transitions: exact pass and
+// approximate index).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -23,13 +25,14 @@
 #include <utility>
 #include <vector>
 
-#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/range/irange.hpp>
 
 #include "engine/core/files.h"
 #include "engine/motion/capture_facts.h"
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
+#include "engine/motion/samples.h"
 #include "graph/keyword_label.h"
 #include "graph/params.h"
 
@@ -58,11 +61,51 @@ inline bool is_natural_edge(std::size_t from, std::size_t to) { return to == fro
 
 // Vertices and edge indices are 32-bit (a graph holds fewer than 2^31 frames, limits.h, and fewer
 // than 2^32 edges, graph_builder checks): 4 bytes an edge, and 8 for its weight beside it.
-// boost::out_edges takes a GraphVertex (it does not convert a std::size_t or an int).
 using GraphVertex = std::uint32_t;
-using GraphStorage = boost::compressed_sparse_row_graph<boost::directedS, NodeInfo, boost::no_property,
-                                                        boost::no_property, GraphVertex, std::uint32_t>;
-using GraphEdge = GraphStorage::edge_descriptor;
+using GraphEdge = std::uint32_t;  // an edge's index: into the targets and MotionGraph::edge_weights
+
+// The edges and nodes in compressed sparse row form: the out-edges of vertex v are the edge
+// indices row_starts()[v] .. row_starts()[v + 1] - 1, each with its target in targets(). Boost's
+// compressed_sparse_row_graph holds the same two arrays but only as vectors of its own; this one
+// holds them as Samples, so a graph served from its file (graph_io.h, format 10) reads them in
+// place from the mapping: no private copy, and batch workers on one file share its pages.
+//
+// The constructor checks that the arrays agree (graph_io's load does so before making one). A
+// file changed in place under a running gmg can still change the values read from its mapping
+// afterwards, so every accessor keeps its result inside the arrays (an edge range within the
+// targets, a target within the vertices): such a change gives wrong edges, never an out-of-bounds
+// read, and MotionGraph::check_unchanged reports it before anything is written.
+class GraphStorage {
+ public:
+  GraphStorage() = default;
+  // Throws gmg::Error when they disagree: rowstart not vertices + 1 values ascending from 0 to the
+  // edge count, or a target outside the vertices.
+  GraphStorage(std::vector<NodeInfo> nodes, Samples<std::uint32_t> rowstart, Samples<GraphVertex> targets);
+
+  std::size_t vertex_count() const { return nodes_.size(); }
+  std::size_t edge_count() const { return targets_.size(); }
+  const NodeInfo& operator[](std::size_t v) const { return nodes_[v]; }
+  NodeInfo& operator[](std::size_t v) { return nodes_[v]; }  // a label to change (by hand, tests)
+  const std::vector<NodeInfo>& nodes() const { return nodes_; }
+  // The edge indices of v's out-edges, in their order (a range of GraphEdge).
+  boost::integer_range<GraphEdge> out_edges(GraphVertex v) const {
+    const std::uint32_t* rows = row_starts_.data();
+    const auto edges = static_cast<std::uint32_t>(targets_.size());
+    const std::uint32_t first = std::min(rows[v], edges);
+    return boost::irange(first, std::max(first, std::min(rows[v + 1], edges)));
+  }
+  GraphVertex target(GraphEdge e) const {
+    return std::min(targets_.data()[e], static_cast<GraphVertex>(nodes_.size() - 1));
+  }
+  // The arrays themselves, for the file writer and the exporters.
+  const Samples<std::uint32_t>& row_starts() const { return row_starts_; }
+  const Samples<GraphVertex>& targets() const { return targets_; }
+
+ private:
+  std::vector<NodeInfo> nodes_;
+  Samples<std::uint32_t> row_starts_{std::vector<std::uint32_t>{0}};  // vertices + 1 values
+  Samples<GraphVertex> targets_;
+};
 
 // The motion of a graph served from its file and loaded with MotionCheck::OnUse (graph/graph_io.h):
 // its frames are checked a block at a time, against the block's checksum in the file and for unit
@@ -115,8 +158,8 @@ struct MotionGraph {
   Motion motion;                // every reference clip, concatenated in order (node i = frame i)
   std::vector<ClipInfo> clips;  // in order, contiguous, covering all frames
   GraphStorage graph;           // num_vertices == motion.frame_count
-  // Every edge's weight (EdgeInfo::weight), in the storage's edge order: num_edges(graph) values,
-  // read in place from the file of a loaded graph (format 9; copied from older ones).
+  // Every edge's weight (EdgeInfo::weight), in the storage's edge order: graph.edge_count() values,
+  // read in place from the file of a loaded graph (format 9 on; copied from older ones).
   Samples<double> edge_weights;
   GraphParams params;  // what it was built with
   // The reference speech under every frame (audio/speech_features.h): frame_count x speech_dims
@@ -170,7 +213,7 @@ struct MotionGraph {
     return speech.data() + static_cast<std::size_t>(frame) * static_cast<std::size_t>(speech_dims);
   }
   const NodeInfo& node(int frame) const { return graph[static_cast<std::size_t>(frame)]; }
-  double weight(const GraphEdge& e) const { return edge_weights[e.idx]; }
+  double weight(GraphEdge e) const { return edge_weights[e]; }
   bool is_key(int frame) const { return node(frame).kinds != 0; }
   // Key nodes of any kind, ascending (a scan of the nodes; graph/reference_facts.h graph_keys reads
   // the index when there is one).

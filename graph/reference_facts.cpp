@@ -7,11 +7,12 @@ namespace gmg {
 double mean_transition_weight(const MotionGraph& g) {
   double sum = 0.0;
   long count = 0;
-  for (auto [it, end] = boost::edges(g.graph); it != end; ++it)
-    if (!is_natural_edge(boost::source(*it, g.graph), boost::target(*it, g.graph))) {
-      sum += g.weight(*it);
-      ++count;
-    }
+  for (std::size_t f = 0; f < g.graph.vertex_count(); ++f)
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f)))
+      if (!is_natural_edge(f, g.graph.target(e))) {
+        sum += g.weight(e);
+        ++count;
+      }
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 

@@ -9,14 +9,15 @@ GraphStats graph_stats(const MotionGraph& g) {
   s.frames = g.frame_count();
   s.clips = static_cast<int>(g.clips.size());
   std::vector<char> has_transition(static_cast<std::size_t>(s.frames), 0);
-  for (auto [it, end] = boost::edges(g.graph); it != end; ++it) {
-    if (is_natural_edge(boost::source(*it, g.graph), boost::target(*it, g.graph))) {
-      ++s.natural_edges;
-    } else {
-      ++s.unnatural_edges;
-      has_transition[boost::source(*it, g.graph)] = 1;
+  for (std::size_t f = 0; f < g.graph.vertex_count(); ++f)
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f))) {
+      if (is_natural_edge(f, g.graph.target(e))) {
+        ++s.natural_edges;
+      } else {
+        ++s.unnatural_edges;
+        has_transition[f] = 1;
+      }
     }
-  }
   int previous_key = -1;
   s.shortest_subsequence = 0;
   for (int f = 0; f < s.frames; ++f) {

@@ -110,8 +110,8 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         continue;
       }
       const int frame = tree[static_cast<std::size_t>(e.tree)].frame;
-      for (auto [out, end] = boost::out_edges(static_cast<GraphVertex>(frame), g.graph); out != end; ++out) {
-        const int child = static_cast<int>(boost::target(*out, g.graph));
+      for (const GraphEdge out : g.graph.out_edges(static_cast<GraphVertex>(frame))) {
+        const int child = static_cast<int>(g.graph.target(out));
         const bool natural = is_natural_edge(static_cast<std::size_t>(frame), static_cast<std::size_t>(child));
         // No transition before the path has dwelt min_run frames, and none back into the stretch
         // it is playing (a loop that replays what was just shown).
@@ -122,7 +122,7 @@ BeamResult beam_search(const MotionGraph& g, const BeamRequest& request, const S
         Entry x;
         x.tree = static_cast<int>(tree.size()) - 1;
         x.length = e.length + 1;
-        x.weight_sum = e.weight_sum + request.weight_scale * g.weight(*out);
+        x.weight_sum = e.weight_sum + request.weight_scale * g.weight(out);
         x.start_cost = e.start_cost;
         x.extra_sum = e.extra_sum + extra_cost(request, e.length, child);
         x.reuse_max = std::max(e.reuse_max, reuse_cost(request, e.length, child));

@@ -82,8 +82,8 @@ class Planner {
 
   std::vector<int> successors(int frame) const {
     std::vector<int> out;
-    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(frame), g_.graph); it != end; ++it)
-      out.push_back(static_cast<int>(boost::target(*it, g_.graph)));
+    for (const GraphEdge e : g_.graph.out_edges(static_cast<GraphVertex>(frame)))
+      out.push_back(static_cast<int>(g_.graph.target(e)));
     return out;
   }
 

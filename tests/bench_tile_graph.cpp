@@ -52,24 +52,25 @@ gmg::MotionGraph tile(const gmg::MotionGraph& g, int copies) {
   t.body.expressions.clear();
   for (int c = 0; c < copies; ++c)
     t.body.expressions.insert(t.body.expressions.end(), g.body.expressions.begin(), g.body.expressions.end());
-  const auto& csr = g.graph.m_forward;
+  const Samples<std::uint32_t>& rows = g.graph.row_starts();
+  const Samples<GraphVertex>& columns = g.graph.targets();
   std::vector<NodeInfo> nodes;
   std::vector<std::uint32_t> rowstart;
   std::vector<GraphVertex> targets;
   std::vector<double> weights;
-  const std::size_t e = csr.m_column.size();
+  const std::size_t e = columns.size();
   for (int c = 0; c < copies; ++c) {
     for (std::size_t f = 0; f < n; ++f) {
       nodes.push_back(g.graph[f]);
-      rowstart.push_back(static_cast<std::uint32_t>(csr.m_rowstart[f] + c * e));
+      rowstart.push_back(static_cast<std::uint32_t>(rows[f] + c * e));
     }
     for (std::size_t i = 0; i < e; ++i) {
-      targets.push_back(static_cast<GraphVertex>(csr.m_column[i] + static_cast<std::size_t>(c) * n));
+      targets.push_back(static_cast<GraphVertex>(columns[i] + static_cast<std::size_t>(c) * n));
       weights.push_back(g.edge_weights[i]);
     }
   }
   rowstart.push_back(static_cast<std::uint32_t>(copies * e));
-  t.graph = graph_storage_from_arrays(std::move(nodes), std::move(rowstart), std::move(targets));
+  t.graph = gmg::GraphStorage(std::move(nodes), std::move(rowstart), std::move(targets));
   t.edge_weights = Samples<double>(std::move(weights));
   index_graph(t);
   return t;
@@ -95,7 +96,7 @@ int main(int argc, char** argv) {
     const gmg::MotionGraph t = tile(g, copies);
     gmg::graph_save(out, t);
     std::printf("wrote %s: %d frames, %zu key nodes, %zu edges\n", out.c_str(), t.frame_count(), t.keys.size(),
-                static_cast<std::size_t>(boost::num_edges(t.graph)));
+                t.graph.edge_count());
   } catch (const gmg::Error& e) {
     std::fprintf(stderr, "bench_tile_graph: %s\n", e.what());
     return 1;

@@ -112,12 +112,12 @@ inline MotionGraph legged_graph() {
 // Gives g one more edge, out of `from` after its own (storage is immutable once built: tests that
 // damage a graph rebuild it).
 inline void add_edge_to(MotionGraph& g, int from, int to, const EdgeInfo& extra) {
-  const int n = static_cast<int>(boost::num_vertices(g.graph));
+  const int n = static_cast<int>(g.graph.vertex_count());
   GraphBuilder b(n);
   for (int f = 0; f < n; ++f) {
     b.node(f) = g.graph[static_cast<GraphVertex>(f)];
-    for (const auto& e : boost::make_iterator_range(boost::out_edges(static_cast<GraphVertex>(f), g.graph)))
-      b.add_edge(f, static_cast<int>(boost::target(e, g.graph)), EdgeInfo{g.weight(e)});
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f)))
+      b.add_edge(f, static_cast<int>(g.graph.target(e)), EdgeInfo{g.weight(e)});
     if (f == from) b.add_edge(from, to, extra);
   }
   b.finish(g);

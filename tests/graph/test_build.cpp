@@ -30,8 +30,7 @@ TEST(Graph, BuildJoinsClipsWithBreaksAndNoNaturalEdgeAcross) {
   EXPECT_EQ(g.node(150).keyword, "big");
   EXPECT_TRUE(g.node(20).kinds & kKeywordNode);
   // Frame 99 ends clip a: no natural edge out of it, no step to frame 100.
-  for (auto [it, end] = boost::out_edges(GraphVertex{99}, g.graph); it != end; ++it)
-    EXPECT_NE(boost::target(*it, g.graph), 100u);
+  for (const GraphEdge e : g.graph.out_edges(99)) EXPECT_NE(g.graph.target(e), 100u);
   const GraphStats s = graph_stats(g);
   EXPECT_EQ(s.onset_nodes, 5);
   EXPECT_EQ(s.keyword_nodes, 3);
@@ -52,9 +51,9 @@ TEST(Graph, LongClipsGetTheFeaturesOfOnePoseFeaturesCall) {
   const MotionGraph g = graph_build({{"long.bvh", m, {}, {}}}, p);
   std::vector<std::tuple<int, int, double>> built, direct;
   for (int f = 0; f < g.frame_count(); ++f)
-    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it)
-      if (boost::target(*it, g.graph) != static_cast<GraphVertex>(f + 1))
-        built.emplace_back(f, static_cast<int>(boost::target(*it, g.graph)), g.weight(*it));
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f)))
+      if (g.graph.target(e) != static_cast<GraphVertex>(f + 1))
+        built.emplace_back(f, static_cast<int>(g.graph.target(e)), g.weight(e));
   for (const Transition& t : continuity_analysis(pose_features(m), one_run(9000), p))
     direct.emplace_back(t.from, t.to, t.weight);
   ASSERT_GT(direct.size(), 1000u);

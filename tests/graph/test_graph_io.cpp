@@ -53,13 +53,9 @@ MotionGraph long_graph() {
   return graph_build({{"long.bvh", line_motion(x), {10, 400}, {{20, "big"}}}}, GraphParams{});
 }
 
-// The bytes of a graph's edge targets, row starts and nodes: what a load copies (the motion, the
-// edge weights, speech features and activity are read in place from the file).
-std::size_t copied_bytes(const MotionGraph& g) {
-  return g.graph.m_forward.m_rowstart.size() * sizeof(std::uint32_t) +
-         g.graph.m_forward.m_column.size() * sizeof(GraphVertex) +
-         g.graph.m_vertex_properties.size() * sizeof(NodeInfo);
-}
+// The bytes of a graph's nodes: what a load copies (the motion, the edges' row starts, targets and
+// weights, the speech features and activity are read in place from the file).
+std::size_t copied_bytes(const MotionGraph& g) { return g.graph.vertex_count() * sizeof(NodeInfo); }
 
 TEST(GraphIo, LoadingServesTheMotionFromTheFile) {
   const MotionGraph g = long_graph();
@@ -68,6 +64,7 @@ TEST(GraphIo, LoadingServesTheMotionFromTheFile) {
   const std::size_t motion = g.motion.rotations.size() * sizeof(glm::dquat) +
                              g.motion.translations.size() * sizeof(glm::dvec3) + g.speech.size() * sizeof(float);
   const std::size_t weights = g.edge_weights.size() * sizeof(double);
+  const std::size_t targets = g.graph.edge_count() * sizeof(GraphVertex);
   const std::size_t copied = copied_bytes(g);
   ASSERT_GT(motion, 300000u);
   // As the command line does it: a graph declared first, then assigned the loaded one.
@@ -77,20 +74,24 @@ TEST(GraphIo, LoadingServesTheMotionFromTheFile) {
   h = graph_load(dir.file("g.gmg"));
   g_counting = false;
   EXPECT_EQ(h.frame_count(), g.frame_count());
-  EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
+  EXPECT_EQ(h.graph.edge_count(), g.graph.edge_count());
   EXPECT_TRUE(h.motion.rotations.is_view());
   EXPECT_TRUE(h.motion.translations.is_view());
   EXPECT_TRUE(h.speech.is_view());
   EXPECT_TRUE(h.edge_weights.is_view());
+  EXPECT_TRUE(h.graph.row_starts().is_view());
+  EXPECT_TRUE(h.graph.targets().is_view());
+  EXPECT_EQ(h.graph.row_starts(), g.graph.row_starts());
+  EXPECT_EQ(h.graph.targets(), g.graph.targets());
   EXPECT_EQ(h.motion.rotations, g.motion.rotations);
   EXPECT_EQ(h.speech, g.speech);
   EXPECT_EQ(h.edge_weights, g.edge_weights);
-  // The edges' targets and the nodes plus small change (names, skeleton); a copy of the motion
-  // would be more, and one of the weights (half the edges' bytes) more than the change.
+  // The nodes plus small change (names, skeleton); a copy of the motion would be more, and one of
+  // the targets (half the weights' bytes) more than the change.
   ASSERT_GT(weights, 40000u);
   EXPECT_GE(g_allocated.load(), copied);
-  EXPECT_LT(g_allocated.load(), copied + weights / 2)
-      << "edge targets and nodes are " << copied << " bytes, the weights " << weights << ", the motion " << motion;
+  EXPECT_LT(g_allocated.load(), copied + targets) << "the nodes are " << copied << " bytes, the targets " << targets
+                                                  << ", the weights " << weights << ", the motion " << motion;
   // A copy of the graph shares the mapping; changing its motion copies it, not the file.
   MotionGraph c = h;
   EXPECT_EQ(std::as_const(c).motion.rotations.data(), std::as_const(h).motion.rotations.data());
@@ -127,7 +128,7 @@ TEST(GraphIo, SaveLoadRoundTrip) {
   graph_save(path, g);
   const MotionGraph h = graph_load(path);
   EXPECT_EQ(h.frame_count(), g.frame_count());
-  EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
+  EXPECT_EQ(h.graph.edge_count(), g.graph.edge_count());
   ASSERT_GT(g.key_sketch.axes, 0);
   EXPECT_EQ(h.key_sketch.axes, g.key_sketch.axes);
   EXPECT_EQ(h.key_sketch.basis, g.key_sketch.basis);
@@ -141,10 +142,10 @@ TEST(GraphIo, SaveLoadRoundTrip) {
     EXPECT_EQ(h.node(f).kinds, g.node(f).kinds);
     EXPECT_EQ(h.node(f).keyword, g.node(f).keyword);
     std::vector<std::tuple<std::size_t, double>> a, b;
-    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), g.graph); it != end; ++it)
-      a.emplace_back(boost::target(*it, g.graph), g.weight(*it));
-    for (auto [it, end] = boost::out_edges(static_cast<GraphVertex>(f), h.graph); it != end; ++it)
-      b.emplace_back(boost::target(*it, h.graph), h.weight(*it));
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f)))
+      a.emplace_back(g.graph.target(e), g.weight(e));
+    for (const GraphEdge e : h.graph.out_edges(static_cast<GraphVertex>(f)))
+      b.emplace_back(h.graph.target(e), h.weight(e));
     EXPECT_EQ(a, b) << "frame " << f;
   }
   EXPECT_EQ(h.params.max_transitions, g.params.max_transitions);
@@ -163,7 +164,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 9);
+  EXPECT_EQ(plain[8], 10);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -174,7 +175,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 9);
+  EXPECT_EQ(bytes[8], 10);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -401,15 +402,15 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x40);
   expect_error(flipped, "damaged");
   std::string version = bytes;
-  version[8] = 10;
-  expect_error(version, "version 10");
+  version[8] = 11;
+  expect_error(version, "version 11");
   // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
   // facts; 6: another checksum) are refused before anything else is read, with the advice to
   // rebuild them.
   for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads versions 7 to 9: rebuild it with 'gmg build'");
+                              ", this gmg reads versions 7 to 10: rebuild it with 'gmg build'");
   }
 }
 
@@ -467,8 +468,9 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
   // A step to the next frame is the natural edge: its weight is 0 (the builder refuses another;
   // the weights are written to directly).
   expect_refused("an edge from frame 3 to the next frame is not its natural edge of weight 0", [](MotionGraph& g) {
-    ASSERT_EQ(boost::target(*boost::out_edges(GraphVertex{3}, g.graph).first, g.graph), 4u);
-    g.edge_weights[g.graph.m_forward.m_rowstart[3]] = 0.5;
+    const GraphEdge first = *g.graph.out_edges(3).begin();
+    ASSERT_EQ(g.graph.target(first), 4u);
+    g.edge_weights[first] = 0.5;
   });
   // The key sketch: what makes its bound a bound (orthonormal rows, each zero off its part), its
   // sizes and finite values.
@@ -504,7 +506,7 @@ TEST(GraphIo, LoadChecksEveryFieldBehindTheChecksum) {
 // arrays in place from the file, and the index and transition scale the load takes from the nodes
 // and edges equal those of the build, bit for bit.
 // Format 7, the format before the key sketch, is still written on request and read: the same
-// graph without a sketch. No other version is written.
+// graph without a sketch. So are 8 and 9; no other version is written.
 TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
   const MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
@@ -516,12 +518,20 @@ TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
   EXPECT_TRUE(h.key_sketch.values.empty());
   EXPECT_EQ(h.key_poses, g.key_poses);
   EXPECT_EQ(h.motion.rotations, g.motion.rotations);
-  EXPECT_EQ(boost::num_edges(h.graph), boost::num_edges(g.graph));
+  EXPECT_EQ(h.graph.edge_count(), g.graph.edge_count());
   graph_save(dir.file("g8.gmg"), g, 8);
   EXPECT_EQ(read_file_bytes(dir.file("g8.gmg"))[8], 8);
   EXPECT_GT(read_file_bytes(dir.file("g8.gmg")).size(), bytes.size());
+  // Format 9's row starts and targets are not aligned: they are copied, the same edges.
+  graph_save(dir.file("g9.gmg"), g, 9);
+  EXPECT_EQ(read_file_bytes(dir.file("g9.gmg"))[8], 9);
+  const MotionGraph h9 = graph_load(dir.file("g9.gmg"));
+  EXPECT_FALSE(h9.graph.row_starts().is_view());
+  EXPECT_FALSE(h9.graph.targets().is_view());
+  EXPECT_EQ(h9.graph.row_starts(), g.graph.row_starts());
+  EXPECT_EQ(h9.graph.targets(), g.graph.targets());
   EXPECT_THROW(graph_save(dir.file("g6.gmg"), g, 6), Error);
-  EXPECT_THROW(graph_save(dir.file("g10.gmg"), g, 10), Error);
+  EXPECT_THROW(graph_save(dir.file("g11.gmg"), g, 11), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("g6.gmg")));
 }
 
@@ -533,14 +543,15 @@ TEST(GraphIo, TheNaturalFlagsAreTheStepsToTheNextFrame) {
   gmg::testing::TempDir dir;
   graph_save(dir.file("g.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("g.gmg"));
-  const auto& csr = g.graph.m_forward;
-  const std::size_t e = csr.m_column.size();
+  const Samples<std::uint32_t>& rows = g.graph.row_starts();
+  const Samples<GraphVertex>& columns = g.graph.targets();
+  const std::size_t e = columns.size();
   std::string weights, flags;
   std::size_t transition = e, step = e;  // an edge of each kind
-  for (std::size_t f = 0; f + 1 < csr.m_rowstart.size(); ++f)
-    for (std::size_t i = csr.m_rowstart[f]; i < csr.m_rowstart[f + 1]; ++i) {
+  for (std::size_t f = 0; f + 1 < rows.size(); ++f)
+    for (std::size_t i = rows[f]; i < rows[f + 1]; ++i) {
       weights.append(reinterpret_cast<const char*>(&g.edge_weights[i]), sizeof(double));
-      const bool natural = csr.m_column[i] == f + 1;
+      const bool natural = columns[i] == f + 1;
       flags += natural ? '\1' : '\0';
       (natural ? step : transition) = i;
     }
@@ -572,6 +583,47 @@ TEST(GraphIo, TheNaturalFlagsAreTheStepsToTheNextFrame) {
   EXPECT_EQ(load_with_flag(step, '\1'), "accepted");  // the control: the flag it had
   EXPECT_NE(load_with_flag(transition, '\1').find("is not a step to the next frame"), std::string::npos);
   EXPECT_NE(load_with_flag(step, '\0').find("to the next frame is not its natural edge"), std::string::npos);
+}
+
+// Format 10 keeps the edges' row starts and targets (u32 each) on page boundaries, read in place.
+// A file whose arrays disagree is refused by the load even behind a valid checksum, naming the
+// file: a target past the last frame, a row start that goes back.
+TEST(GraphIo, TheEdgeArraysAreReadInPlaceAndChecked) {
+  const MotionGraph g = two_clip_graph();
+  gmg::testing::TempDir dir;
+  graph_save(dir.file("g.gmg"), g);
+  const std::string bytes = read_file_bytes(dir.file("g.gmg"));
+  auto raw = [](const auto& values) {
+    return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(values[0]));
+  };
+  const std::size_t rows_at = bytes.find(raw(g.graph.row_starts()));
+  const std::size_t targets_at = bytes.find(raw(g.graph.targets()));
+  ASSERT_NE(rows_at, std::string::npos);
+  ASSERT_NE(targets_at, std::string::npos);
+  EXPECT_EQ(rows_at % 4096, 0u);
+  EXPECT_EQ(targets_at % 4096, 0u);
+  const MotionGraph h = graph_load(dir.file("g.gmg"));
+  EXPECT_EQ(std::as_const(h.graph).targets().data(),
+            reinterpret_cast<const GraphVertex*>(h.source->data() + targets_at));
+
+  auto load_with = [&](std::size_t at, std::uint32_t value) {
+    std::string hand = bytes;
+    std::memcpy(hand.data() + at, &value, sizeof value);
+    std::uint64_t summed = 0;
+    std::memcpy(&summed, hand.data() + 20, 8);
+    const std::uint64_t sum = checksum_of(hand.data() + 28, summed);
+    std::memcpy(hand.data() + hand.size() - 8, &sum, 8);
+    gmg::testing::write_text(dir.file("hand.gmg"), hand);
+    return gmg::testing::error_of([&] { graph_load(dir.file("hand.gmg")); });
+  };
+  const auto frames = static_cast<std::uint32_t>(g.frame_count());
+  // The control: a target changed to another frame inside the graph (frame 0's natural edge,
+  // which then no longer steps to the next frame: refused for its flag, not its range).
+  EXPECT_NE(load_with(targets_at, 0).find("is not a step to the next frame"), std::string::npos);
+  const std::string past = load_with(targets_at + 4, frames);
+  EXPECT_NE(past.find("hand.gmg: byte "), std::string::npos) << past;
+  EXPECT_NE(past.find("an edge target is outside the graph"), std::string::npos) << past;
+  EXPECT_NE(load_with(rows_at + 8, 0).find("row starts are not ascending"), std::string::npos);
 }
 
 TEST(GraphIo, TheReferenceFactsRoundTrip) {

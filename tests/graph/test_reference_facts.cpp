@@ -35,11 +35,12 @@ TEST(ReferenceFacts, TheTransitionScaleIsTheMeanUnnaturalWeight) {
   const MotionGraph g = two_clip_graph();
   double sum = 0.0;
   long count = 0;
-  for (auto [it, end] = boost::edges(g.graph); it != end; ++it)
-    if (boost::target(*it, g.graph) != boost::source(*it, g.graph) + 1) {
-      sum += g.weight(*it);
-      ++count;
-    }
+  for (std::size_t f = 0; f < g.graph.vertex_count(); ++f)
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f)))
+      if (g.graph.target(e) != f + 1) {
+        sum += g.weight(e);
+        ++count;
+      }
   ASSERT_GT(count, 0);
   EXPECT_EQ(g.transition_weight, sum / static_cast<double>(count));
   EXPECT_EQ(mean_transition_weight(g), g.transition_weight);

@@ -475,7 +475,7 @@ TEST_F(SynthPipeline, ClipsAndSpeechInMemoryGiveWhatTheirFilesGive) {
   const MotionGraph from_memory = graph_build_from_clips({clip}, cfg);
   ASSERT_EQ(from_memory.frame_count(), from_files.frame_count());
   EXPECT_EQ(from_memory.speech, from_files.speech);
-  EXPECT_EQ(boost::num_edges(from_memory.graph), boost::num_edges(from_files.graph));
+  EXPECT_EQ(from_memory.graph.edge_count(), from_files.graph.edge_count());
   const Reenactment a = reenact(from_files, {file("test.wav"), file("test.tsv")}, cfg, "g");
   const std::vector<text::Word> words = text::read_transcript(file("test.tsv"));
   const Reenactment b = reenact_audio(from_memory, audio::read_audio(file("test.wav")), &words, cfg, "new", "g");
