@@ -644,10 +644,6 @@ void MappedFile::check_unchanged() const {
   throw Error(path_ + ": changed while in use (it was truncated or written to; read it again when it is complete)");
 }
 
-void MappedFile::expect_random_reads() const {
-  if (data_) ::madvise(const_cast<char*>(data_), size_, MADV_RANDOM);
-}
-
 void advise_huge_pages(const void* p, std::size_t size) {
 #ifdef MADV_HUGEPAGE
   constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;

@@ -64,9 +64,6 @@ class MappedFile {
   // them; a later read maps them again): for a pass over the whole file that should not leave it
   // all resident.
   void release(std::size_t offset, std::size_t size) const;
-  // From now on the file is read here and there, not front to back: no readahead and no mapping
-  // of the pages around a read (without it, reading one frame here and there maps most of them).
-  void expect_random_reads() const;
 
  private:
   std::string path_;
