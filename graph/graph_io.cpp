@@ -34,11 +34,11 @@
 // index other arrays, are validated by the load and then read in place through accessors that
 // keep every index inside its array (graph/motion_graph.h GraphStorage), so a file rewritten in
 // place under a running gmg can give wrong values, never an out-of-bounds read; the mapping then
-// reports the change (MotionGraph::check_unchanged). The key and break frames and the mean transition weight are not
-// stored: the load takes them from the nodes and edges it reads. A file with another magic or
-// version (older versions included: 3 had no key poses and unaligned arrays, 4 no body, 5 no
-// reference facts, 6 one checksum over everything), a short or over-long payload or a wrong
-// checksum is rejected before anything is used.
+// reports the change (MotionGraph::check_unchanged). The key and break frames and the mean
+// transition weight are not stored: the load takes them from the nodes and edges it reads. A file
+// with another magic or version (older versions included: 3 had no key poses and unaligned arrays,
+// 4 no body, 5 no reference facts, 6 one checksum over everything), a short or over-long payload
+// or a wrong checksum is rejected before anything is used.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -810,8 +810,8 @@ std::vector<NodeInfo> read_nodes(Reader& r, std::size_t frames, MotionGraph& g) 
 // The edges, and the mean weight of the unnatural ones (MotionGraph::transition_weight, summed in
 // edge order as mean_transition_weight does). Each edge's natural flag must be is_natural_edge's:
 // a natural edge steps to the next frame with weight 0, a transition never steps to the next frame.
-// Format 9's weights are read in place (aligned, their pages kept mapped for the flags' pass that
-// follows); older formats' are copied.
+// Format 10's row starts and targets and format 9's weights are read in place (aligned, their
+// pages kept mapped for the flags' pass that follows); older formats' are copied.
 void read_edges(Reader& r, const Source& src, std::uint32_t version, std::vector<NodeInfo> nodes, MotionGraph& out) {
   Samples<std::uint32_t> rowstart;
   Samples<GraphVertex> targets;
