@@ -9,7 +9,7 @@
 //                        [--indexes kd4,kd8,kmeans,hier (or space:index, e.g. proj:hier)]
 //                        [--cluster-hours 1] [--autotune-hours 0]
 //                        [--hnsw full,proj] [--hnsw-graphs 16x100 (M x ef_construction)]
-//                        [--ef 256,384,512,768,1024]
+//                        [--ef 256,384,512,768,1024] [--propagate 0,1]
 //
 // For each length: a synthetic speaker (engine/synth, 25 joints, seed 3, as bench_graph; audio at
 // 8 kHz, which the motion does not depend on, and dropped at once), its pose features computed a
@@ -25,7 +25,8 @@
 //    the other 15 frames of its leaf, as the build does; asked frame by frame, as here, each leaf
 //    is walked once per frame asked, so the budgeted rows' query times are an upper bound.) The
 //    exact reference is checked against a brute-force scan of all frames (in double) for `brute`
-//    of the query frames.
+//    of the query frames. With --propagate widths, each budgeted row is followed by its lists handed
+//    on between consecutive query frames (propagate), chained and from the neighbours' own lists.
 // 2. FLANN: d = lp ||dp|| + lv ||dv|| is a sum of two norms, which FLANN cannot search. It indexes
 //    one Euclidean space whose norm N bounds d from below:
 //      full: the features [lp (p - mean_p); lv (v - mean_v)] (rows that are 0 in every frame, the
@@ -130,6 +131,9 @@ struct Options {
   std::vector<std::string> hnsw_spaces;
   std::vector<std::pair<int, int>> hnsw_graphs{{16, 100}};
   std::vector<int> ef{256, 384, 512, 768, 1024};
+  // After each budgeted row of ours, the same lists passed on between consecutive frames (see
+  // propagate) with these widths; none by default.
+  std::vector<int> propagate;
 };
 
 // One row of the table.
@@ -627,6 +631,71 @@ void print_temporal_coherence(const Reference& ref, const Lists& exact) {
       100.0 * static_cast<double>(near) / static_cast<double>(total));
 }
 
+// A budgeted search's lists handed on between consecutive query frames: a frame's candidates are
+// mostly runs of consecutive frames, so a member r of frame l's K_l suggests r + 1 for frame l + 1
+// (and r - 1 for l - 1). A forward pass over each block (frame i takes its own list and frame
+// i - 1's, each member shifted a frame on and widened by `width` frames either side), then a
+// backward one (frame i + 1's, shifted a frame back), each list refined as K_l is defined
+// (FastRefiner: exact over the frames offered). The cost is fixed per frame, whatever the length.
+// `chained` false: one pass in which each frame takes its two neighbours' own lists (as found, not
+// as passed on), so that a frame's result does not depend on the order frames are taken in.
+Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const Lists& found, int width, bool chained,
+                Row& row) {
+  const FastRefiner refine{ref, space};
+  const int n = ref.features.frame_count();
+  Lists out = found;
+  std::vector<int> offered;
+  auto offer = [&](const std::vector<int>& from, int shift) {
+    for (const int r : from)
+      for (int d = -width; d <= width; ++d) {
+        const int c = r + shift + d;
+        if (c >= 0 && c < n) offered.push_back(c);
+      }
+  };
+  auto settle = [&](std::size_t i) {
+    std::sort(offered.begin(), offered.end());
+    offered.erase(std::unique(offered.begin(), offered.end()), offered.end());
+    refine(ref.frames[i], offered.data(), nullptr, static_cast<int>(offered.size()), out[i]);
+  };
+  auto pass = [&](std::size_t i, std::size_t from, int shift) {
+    offered = out[i];
+    offer(out[from], shift);
+    settle(i);
+  };
+  Timer t;
+  if (chained) {
+    for (std::size_t i = 1; i < ref.frames.size(); ++i)
+      if (ref.frames[i] == ref.frames[i - 1] + 1) pass(i, i - 1, 1);
+    for (std::size_t i = ref.frames.size() - 1; i-- > 0;)
+      if (ref.frames[i + 1] == ref.frames[i] + 1) pass(i, i + 1, -1);
+  } else {
+    for (std::size_t i = 0; i < ref.frames.size(); ++i) {
+      offered = found[i];
+      if (i > 0 && ref.frames[i] == ref.frames[i - 1] + 1) offer(found[i - 1], 1);
+      if (i + 1 < ref.frames.size() && ref.frames[i + 1] == ref.frames[i] + 1) offer(found[i + 1], -1);
+      settle(i);
+    }
+  }
+  row.refine_s = t.cpu();
+  return out;
+}
+
+// The rows of a budgeted search's lists handed on (propagate), for each width, both ways.
+void print_propagated(double hours, const Options& o, const Reference& ref, const Lists& exact, const Lists& found,
+                      const Row& walk) {
+  if (o.propagate.empty()) return;
+  neighbours::PoseSpace space(ref.features, ref.params);
+  space.set_order({});
+  for (const int width : o.propagate)
+    for (const bool chained : {true, false}) {
+      Row p = walk;
+      const Lists passed = propagate(ref, space, found, width, chained, p);
+      p.recall = candidate_recall(passed, exact);
+      p.params += (chained ? ", passed on +-" : ", neighbours' +-") + std::to_string(width);
+      print_row(hours, ref.features.frame_count(), p);
+    }
+}
+
 void run_length(double hours, const Options& o) {
   Timer total;
   const Reference ref = make_reference(hours, o);
@@ -656,6 +725,7 @@ void run_length(double hours, const Options& o) {
     print_row(hours, n, r);
     if (r.recall >= 0.95 && (!ours_best.found || projected(r, ref) < projected(ours_best.row, ref)))
       ours_best = {true, r, checks, 1, 0, {}};
+    if (checks > 0) print_propagated(hours, o, ref, exact, found, r);
   }
 
   // 2. FLANN. The refinement's pose space (float features, as our finder makes it) is made once;
@@ -769,6 +839,8 @@ int main(int argc, char** argv) {
         }
         o.hnsw_graphs.emplace_back(std::atoi(w.substr(0, x).c_str()), std::atoi(w.substr(x + 1).c_str()));
       }
+    } else if (std::strcmp(key, "--propagate") == 0) {
+      o.propagate = parse_ints(value);
     } else if (std::strcmp(key, "--ef") == 0) {
       o.ef = parse_ints(value);
     } else {
