@@ -143,7 +143,7 @@ struct Row {
 };
 
 void print_header() {
-  std::printf("%-6s %9s  %-7s %-44s %8s %9s %9s %8s %7s\n", "length", "frames", "method", "parameters", "build s",
+  std::printf("%-6s %9s  %-7s %-58s %8s %9s %9s %8s %7s\n", "length", "frames", "method", "parameters", "build s",
               "query CPU", "query wall", "refine", "recall");
   std::fflush(stdout);
 }
@@ -151,7 +151,7 @@ void print_header() {
 void print_row(double hours, int frames, const Row& r) {
   char refine[32] = "";
   if (r.refine_s >= 0) std::snprintf(refine, sizeof refine, "%.2f", r.refine_s);
-  std::printf("%-6s %9d  %-7s %-44s %8.2f %9.2f %9.2f %8s %7.4f\n", (std::to_string(hours).substr(0, 4) + " h").c_str(),
+  std::printf("%-6s %9d  %-7s %-58s %8.2f %9.2f %9.2f %8s %7.4f\n", (std::to_string(hours).substr(0, 4) + " h").c_str(),
               frames, r.method.c_str(), r.params.c_str(), r.build_s, r.cpu_s, r.wall_s, refine, r.recall);
   std::fflush(stdout);
 }
@@ -639,8 +639,9 @@ void print_temporal_coherence(const Reference& ref, const Lists& exact) {
 // (FastRefiner: exact over the frames offered). The cost is fixed per frame, whatever the length.
 // `chained` false: one pass in which each frame takes its two neighbours' own lists (as found, not
 // as passed on), so that a frame's result does not depend on the order frames are taken in.
+// out_fresh: frames offered beyond the lists they were added to, per query frame (both passes).
 Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const Lists& found, int width, bool chained,
-                Row& row) {
+                Row& row, double& out_fresh) {
   const FastRefiner refine{ref, space};
   const int n = ref.features.frame_count();
   Lists out = found;
@@ -652,15 +653,20 @@ Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const 
         if (c >= 0 && c < n) offered.push_back(c);
       }
   };
-  auto settle = [&](std::size_t i) {
+  // Frames offered beyond a frame's own list: the distances a pass that kept the list's own would
+  // have to make.
+  std::size_t fresh = 0, settled = 0;
+  auto settle = [&](std::size_t i, std::size_t own) {
     std::sort(offered.begin(), offered.end());
     offered.erase(std::unique(offered.begin(), offered.end()), offered.end());
+    fresh += offered.size() - own;
+    ++settled;
     refine(ref.frames[i], offered.data(), nullptr, static_cast<int>(offered.size()), out[i]);
   };
   auto pass = [&](std::size_t i, std::size_t from, int shift) {
     offered = out[i];
     offer(out[from], shift);
-    settle(i);
+    settle(i, out[i].size());
   };
   Timer t;
   if (chained) {
@@ -673,10 +679,11 @@ Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const 
       offered = found[i];
       if (i > 0 && ref.frames[i] == ref.frames[i - 1] + 1) offer(found[i - 1], 1);
       if (i + 1 < ref.frames.size() && ref.frames[i + 1] == ref.frames[i] + 1) offer(found[i + 1], -1);
-      settle(i);
+      settle(i, found[i].size());
     }
   }
   row.refine_s = t.cpu();
+  out_fresh = settled > 0 ? static_cast<double>(fresh) / static_cast<double>(ref.frames.size()) : 0.0;
   return out;
 }
 
@@ -689,9 +696,12 @@ void print_propagated(double hours, const Options& o, const Reference& ref, cons
   for (const int width : o.propagate)
     for (const bool chained : {true, false}) {
       Row p = walk;
-      const Lists passed = propagate(ref, space, found, width, chained, p);
+      double fresh = 0;
+      const Lists passed = propagate(ref, space, found, width, chained, p, fresh);
       p.recall = candidate_recall(passed, exact);
-      p.params += (chained ? ", passed on +-" : ", neighbours' +-") + std::to_string(width);
+      char note[80];
+      std::snprintf(note, sizeof note, ", %s +-%d (%.0f new)", chained ? "passed on" : "neighbours'", width, fresh);
+      p.params += note;
       print_row(hours, ref.features.frame_count(), p);
     }
 }
