@@ -687,6 +687,54 @@ Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const 
   return out;
 }
 
+// The neighbours' pass (propagate, not chained, width 0) as a build would make it: each frame's own
+// members keep the distances the search gave them (made here before the clock starts), and only the
+// frames its neighbours offer beyond them are measured, into one reused gathering. Returns the
+// lists; row.refine_s is the pass's CPU.
+Lists propagate_lean(const Reference& ref, const neighbours::PoseSpace& space, const Lists& found, Row& row) {
+  const neighbours::Allowed allowed{ref.params.l_pn, ref.params.exclude_near};
+  const std::size_t k = static_cast<std::size_t>(candidate_limit(ref.params));
+  const std::size_t q = ref.frames.size();
+  std::vector<std::vector<Candidate>> own(q);
+  for (std::size_t i = 0; i < q; ++i)
+    for (const int r : found[i]) own[i].push_back({space.approx(ref.frames[i], r), r});
+  Lists out(q);
+  std::vector<Candidate> items, result;
+  std::vector<int> fresh;
+  std::vector<float> kth;
+  std::vector<std::pair<double, int>> ties;
+  Timer t;
+  for (std::size_t i = 0; i < q; ++i) {
+    const int l = ref.frames[i];
+    const double theta = ref.theta[static_cast<std::size_t>(l)];
+    neighbours::Gathered g(space, k, space.radius(theta), items, kth, ties);
+    if (g.radius() < 0) continue;
+    for (const Candidate& c : own[i]) g.add(c.d, c.r);
+    const std::vector<int>& mine = found[i];  // ascending
+    fresh.clear();
+    auto offer = [&](const std::vector<int>& from, int shift) {
+      for (const int f : from) {
+        const int r = f + shift;
+        if (r >= 0 && r < ref.features.frame_count() && allowed(l, r) &&
+            !std::binary_search(mine.begin(), mine.end(), r))
+          fresh.push_back(r);
+      }
+    };
+    if (i > 0 && ref.frames[i - 1] == l - 1) offer(found[i - 1], 1);
+    if (i + 1 < q && ref.frames[i + 1] == l + 1) offer(found[i + 1], -1);
+    std::sort(fresh.begin(), fresh.end());
+    fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+    for (const int r : fresh) {
+      const float d = space.approx(l, r);
+      if (d <= g.radius() && space.within(l, r, d, theta)) g.add(d, r);
+    }
+    g.resolve(l, result);
+    for (const Candidate& c : result) out[i].push_back(c.r);
+  }
+  row.refine_s = t.cpu();
+  return out;
+}
+
 // The rows of a budgeted search's lists handed on (propagate), for each width, both ways.
 void print_propagated(double hours, const Options& o, const Reference& ref, const Lists& exact, const Lists& found,
                       const Row& walk) {
@@ -704,6 +752,11 @@ void print_propagated(double hours, const Options& o, const Reference& ref, cons
       p.params += note;
       print_row(hours, ref.features.frame_count(), p);
     }
+  Row lean = walk;
+  const Lists passed = propagate_lean(ref, space, found, lean);
+  lean.recall = candidate_recall(passed, exact);
+  lean.params += ", neighbours' +-0, lean";
+  print_row(hours, ref.features.frame_count(), lean);
 }
 
 void run_length(double hours, const Options& o) {
