@@ -26,7 +26,8 @@
 //    is walked once per frame asked, so the budgeted rows' query times are an upper bound.) The
 //    exact reference is checked against a brute-force scan of all frames (in double) for `brute`
 //    of the query frames. With --propagate widths, each budgeted row is followed by its lists handed
-//    on between consecutive query frames (propagate), chained and from the neighbours' own lists.
+//    on between consecutive query frames (propagate), chained and from the neighbours' own lists,
+//    and by the rows of a lean pass of the second kind, timed as a build would make it.
 // 2. FLANN: d = lp ||dp|| + lv ||dv|| is a sum of two norms, which FLANN cannot search. It indexes
 //    one Euclidean space whose norm N bounds d from below:
 //      full: the features [lp (p - mean_p); lv (v - mean_v)] (rows that are 0 in every frame, the
@@ -655,12 +656,11 @@ Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const 
   };
   // Frames offered beyond a frame's own list: the distances a pass that kept the list's own would
   // have to make.
-  std::size_t fresh = 0, settled = 0;
+  std::size_t fresh = 0;
   auto settle = [&](std::size_t i, std::size_t own) {
     std::sort(offered.begin(), offered.end());
     offered.erase(std::unique(offered.begin(), offered.end()), offered.end());
     fresh += offered.size() - own;
-    ++settled;
     refine(ref.frames[i], offered.data(), nullptr, static_cast<int>(offered.size()), out[i]);
   };
   auto pass = [&](std::size_t i, std::size_t from, int shift) {
@@ -683,7 +683,7 @@ Lists propagate(const Reference& ref, const neighbours::PoseSpace& space, const 
     }
   }
   row.refine_s = t.cpu();
-  out_fresh = settled > 0 ? static_cast<double>(fresh) / static_cast<double>(ref.frames.size()) : 0.0;
+  out_fresh = ref.frames.empty() ? 0.0 : static_cast<double>(fresh) / static_cast<double>(ref.frames.size());
   return out;
 }
 
