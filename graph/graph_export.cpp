@@ -84,9 +84,8 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
 }
 
 void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
-  const Part part = subgraph(g, from, to);
+  Part part = subgraph(g, from, to);  // not const: the writer's property maps take mutable iterators
   const ExportGraph& sub = part.graph;
-  std::vector<double> weight = part.weight;
   std::vector<int> frame(boost::num_vertices(sub));
   std::vector<std::string> kinds(boost::num_vertices(sub)), keyword(boost::num_vertices(sub));
   for (std::size_t v = 0; v < frame.size(); ++v) {
@@ -101,7 +100,7 @@ void graph_write_graphml(const std::string& path, const MotionGraph& g, int from
   dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("keyword", boost::make_iterator_property_map(keyword.begin(), boost::get(boost::vertex_index, sub)));
-  dp.property("weight", boost::make_iterator_property_map(weight.begin(), boost::get(boost::edge_index, sub)));
+  dp.property("weight", boost::make_iterator_property_map(part.weight.begin(), boost::get(boost::edge_index, sub)));
   dp.property("natural", boost::make_iterator_property_map(natural.begin(), boost::get(boost::edge_index, sub)));
   write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
 }

@@ -6,7 +6,9 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <new>
+#include <regex>
 #include <tuple>
 #include <utility>
 
@@ -417,14 +419,48 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
 TEST(GraphIo, ExportsDotAndGraphml) {
   const MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
-  graph_write_dot(dir.file("g.dot"), g, 0, 50);
-  graph_write_graphml(dir.file("g.graphml"), g, 0, 50);
+  constexpr int kFrom = 10, kTo = 50;
+  graph_write_dot(dir.file("g.dot"), g, kFrom, kTo);
+  graph_write_graphml(dir.file("g.graphml"), g, kFrom, kTo);
   const std::string dot = read_file_bytes(dir.file("g.dot"));
   const std::string xml = read_file_bytes(dir.file("g.graphml"));
   EXPECT_NE(dot.find("digraph"), std::string::npos);
   EXPECT_NE(dot.find("big"), std::string::npos);
   EXPECT_NE(xml.find("<graphml"), std::string::npos);
   EXPECT_NE(xml.find("keyword"), std::string::npos);
+
+  // Every edge with both ends in the range, and no other, with its flag and weight: (source,
+  // target) as the files number them (vertex i = frame kFrom + i) to (natural, weight).
+  std::map<std::pair<int, int>, std::pair<bool, double>> want;
+  int transitions = 0;
+  for (int f = kFrom; f < kTo; ++f)
+    for (const GraphEdge e : g.graph.out_edges(static_cast<GraphVertex>(f))) {
+      const int b = static_cast<int>(g.graph.target(e));
+      if (b < kFrom || b >= kTo) continue;
+      const bool natural = b == f + 1;
+      want[{f - kFrom, b - kFrom}] = {natural, g.weight(e)};
+      transitions += natural ? 0 : 1;
+    }
+  ASSERT_GT(transitions, 0) << "the range should hold transitions";
+  const std::regex edge(
+      R"re(<edge id="e\d+" source="n(\d+)" target="n(\d+)">\s*<data key="key3">(\d)</data>\s*<data key="key4">([^<]+)</data>)re");
+  std::map<std::pair<int, int>, std::pair<bool, double>> got;
+  for (std::sregex_iterator it(xml.begin(), xml.end(), edge), end; it != end; ++it)
+    got[{std::stoi((*it)[1]), std::stoi((*it)[2])}] = {(*it)[3] == "1", std::stod((*it)[4])};
+  ASSERT_EQ(got.size(), want.size());
+  for (const auto& [ends, value] : want) {
+    ASSERT_EQ(got.count(ends), 1u) << ends.first << " -> " << ends.second;
+    EXPECT_EQ(got[ends].first, value.first) << ends.first << " -> " << ends.second;
+    // (Boost's writer prints a weight with the stream's default six significant digits.)
+    EXPECT_NEAR(got[ends].second, value.second, 5e-6 * value.second) << ends.first << " -> " << ends.second;
+  }
+  // The DOT file draws each transition in orange with its weight, each natural edge in gray.
+  std::size_t orange = 0, gray = 0;
+  for (std::size_t at = dot.find("color=orange"); at != std::string::npos; at = dot.find("color=orange", at + 1)) ++orange;
+  for (std::size_t at = dot.find("[color=gray]"); at != std::string::npos; at = dot.find("[color=gray]", at + 1)) ++gray;
+  EXPECT_EQ(orange, static_cast<std::size_t>(transitions));
+  EXPECT_EQ(gray, want.size() - static_cast<std::size_t>(transitions));
+
   EXPECT_THROW(graph_write_dot(dir.file("x.dot"), g, 50, 500), Error);
 }
 
