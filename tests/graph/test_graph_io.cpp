@@ -442,8 +442,8 @@ TEST(GraphIo, ExportsDotAndGraphml) {
       transitions += natural ? 0 : 1;
     }
   ASSERT_GT(transitions, 0) << "the range should hold transitions";
-  const std::regex edge(
-      R"re(<edge id="e\d+" source="n(\d+)" target="n(\d+)">\s*<data key="key3">(\d)</data>\s*<data key="key4">([^<]+)</data>)re");
+  const std::regex edge(R"re(<edge id="e\d+" source="n(\d+)" target="n(\d+)">\s*)re"
+                        R"re(<data key="key3">(\d)</data>\s*<data key="key4">([^<]+)</data>)re");
   std::map<std::pair<int, int>, std::pair<bool, double>> got;
   for (std::sregex_iterator it(xml.begin(), xml.end(), edge), end; it != end; ++it)
     got[{std::stoi((*it)[1]), std::stoi((*it)[2])}] = {(*it)[3] == "1", std::stod((*it)[4])};
@@ -456,8 +456,10 @@ TEST(GraphIo, ExportsDotAndGraphml) {
   }
   // The DOT file draws each transition in orange with its weight, each natural edge in gray.
   std::size_t orange = 0, gray = 0;
-  for (std::size_t at = dot.find("color=orange"); at != std::string::npos; at = dot.find("color=orange", at + 1)) ++orange;
-  for (std::size_t at = dot.find("[color=gray]"); at != std::string::npos; at = dot.find("[color=gray]", at + 1)) ++gray;
+  for (std::size_t at = dot.find("color=orange"); at != std::string::npos; at = dot.find("color=orange", at + 1))
+    ++orange;
+  for (std::size_t at = dot.find("[color=gray]"); at != std::string::npos; at = dot.find("[color=gray]", at + 1))
+    ++gray;
   EXPECT_EQ(orange, static_cast<std::size_t>(transitions));
   EXPECT_EQ(gray, want.size() - static_cast<std::size_t>(transitions));
 
