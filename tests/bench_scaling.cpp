@@ -2,6 +2,7 @@
 // about time (machines are shared and noisy).
 //
 //   build/bench_scaling [--hours 0.25,1,2,4] [--joints 25] [--runs 1] [--cliff] [--reenact]
+//                       [--set KEY=VALUE ...]
 //
 // For each length, one synthetic speaker (`gmg synth --joints J --seed 3 --duration S`, written
 // into a temporary folder, not timed) is built with the `gmg` binary as a child process: wall and
@@ -13,6 +14,8 @@
 // the share of frames with a transition, and the transitions of each such frame.
 // --cliff builds 14,970 and 15,030 frames (either side of the default exact_frames) and prints
 // their transitions. --reenact also reenacts 77 s of synthetic speech (seed 99) from each graph.
+// --set (repeatable) hands a parameter to every `gmg build`, to measure how another setting grows
+// (`--set max_transitions=3`, `--set neighbours=approximate`) against the defaults' table.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -66,15 +69,18 @@ std::string write_speaker(const std::string& dir, const std::string& tag, double
   return clips;
 }
 
-Row measure(const std::string& dir, double seconds, int joints, int runs, bool reenact) {
+Row measure(const std::string& dir, double seconds, int joints, int runs, bool reenact,
+            const std::vector<std::string>& sets) {
   Row row;
   row.seconds = seconds;
   char tag[32];
   std::snprintf(tag, sizeof tag, "%.0f", seconds);
   const std::string clips = write_speaker(dir, tag, seconds, joints);
   const std::string graph = dir + "/g" + tag + ".gmg";
+  std::vector<std::string> build = {GMG_BINARY, "build", "--clips", clips, "-o", graph, "--progress", "none"};
+  for (const std::string& s : sets) build.insert(build.end(), {"--set", s});
   for (int i = 0; i < runs; ++i) {
-    const CommandRun r = run_command({GMG_BINARY, "build", "--clips", clips, "-o", graph, "--progress", "none"});
+    const CommandRun r = run_command(build);
     row.wall.push_back(r.wall);
     row.cpu.push_back(r.cpu);
     row.rss.push_back(r.rss_mb);
@@ -114,6 +120,7 @@ int main(int argc, char** argv) {
   std::vector<double> hours = {0.25, 1, 2, 4};
   int joints = 25, runs = 1;
   bool cliff = false, reenact = false;
+  std::vector<std::string> sets;  // --set KEY=VALUE, handed to every build
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--hours" && i + 1 < argc) {
@@ -128,21 +135,26 @@ int main(int argc, char** argv) {
       cliff = true;
     } else if (a == "--reenact") {
       reenact = true;
+    } else if (a == "--set" && i + 1 < argc && std::strchr(argv[i + 1], '=') != nullptr) {
+      sets.emplace_back(argv[++i]);
     } else {
       std::fprintf(stderr,
-                   "usage: bench_scaling [--hours 0.25,1,2,4] [--joints 25] [--runs 1] [--cliff] [--reenact]\n");
+                   "usage: bench_scaling [--hours 0.25,1,2,4] [--joints 25] [--runs 1] [--cliff] [--reenact] "
+                   "[--set KEY=VALUE ...]\n");
       return 2;
     }
   }
   const gmg::testing::TempDir dir;
   const std::string d = dir.path().string();
-  std::printf("gmg build of synthetic speakers, %d joints, %d run(s) each (CPU and wall: median)\n\n", joints, runs);
+  std::printf("gmg build of synthetic speakers, %d joints, %d run(s) each (CPU and wall: median)", joints, runs);
+  for (const std::string& s : sets) std::printf(", --set %s", s.c_str());
+  std::printf("\n\n");
   std::printf("| length | frames | build CPU / wall | peak RSS | transitions | mean out-degree | graph file |%s\n",
               reenact ? " reenact 77 s: CPU, peak RSS |" : "");
   std::printf("| --- | --- | --- | --- | --- | --- | --- |%s\n", reenact ? " --- |" : "");
   std::vector<Row> rows;
   for (const double h : hours) {
-    rows.push_back(measure(d, h * 3600.0, joints, runs, reenact));
+    rows.push_back(measure(d, h * 3600.0, joints, runs, reenact, sets));
     print_row(rows.back(), reenact);
   }
   if (rows.size() >= 2) {
@@ -162,8 +174,8 @@ int main(int argc, char** argv) {
   }
   if (cliff) {
     std::printf("\neither side of exact_frames (15,000):\n");
-    const Row below = measure(d, 14970.0 / 30.0, joints, 1, false);
-    const Row above = measure(d, 15030.0 / 30.0, joints, 1, false);
+    const Row below = measure(d, 14970.0 / 30.0, joints, 1, false, sets);
+    const Row above = measure(d, 15030.0 / 30.0, joints, 1, false, sets);
     std::printf("  %.0f frames: %.0f transitions, %.2f s CPU; %.0f frames: %.0f transitions, %.2f s CPU (%+.1f %%)\n",
                 below.frames, below.edges, median(below.cpu), above.frames, above.edges, median(above.cpu),
                 100.0 * (above.edges / below.edges - 1.0));
