@@ -1,4 +1,7 @@
 // GraphViz DOT and GraphML export of a frame range (Boost's writers).
+#include <charconv>
+#include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -6,6 +9,7 @@
 #include <boost/graph/graphml.hpp>
 #include <boost/graph/graphviz.hpp>
 #include <boost/property_map/dynamic_property_map.hpp>
+#include <boost/smart_ptr/make_shared.hpp>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -43,6 +47,28 @@ Part subgraph(const MotionGraph& g, int from, int to) {
   for (int f = from; f < to; ++f) part.graph[static_cast<std::size_t>(f - from)] = g.node(f);
   return part;
 }
+
+// The edges' weights as the GraphML writer asks for them. Boost's own adaptor prints a double
+// through a fresh stream, with six significant digits; this map prints each weight in the shortest
+// form that reads back as the same double (std::to_chars), and still declares it a double, so the
+// file's key says attr.type="double" and a reader parses a number.
+class ExactWeights : public boost::dynamic_property_map {
+ public:
+  explicit ExactWeights(const std::vector<double>& weights) : weights_(weights) {}
+  boost::any get(const boost::any& key) override { return weights_[index(key)]; }
+  std::string get_string(const boost::any& key) override {
+    char text[32];  // the longest shortest form of a double is 24 characters
+    const std::to_chars_result r = std::to_chars(text, text + sizeof text, weights_[index(key)]);
+    return std::string(text, r.ptr);
+  }
+  void put(const boost::any&, const boost::any&) override { throw Error("graph export: the weights are read only"); }
+  const std::type_info& key() const override { return typeid(ExportGraph::edge_descriptor); }
+  const std::type_info& value() const override { return typeid(double); }
+
+ private:
+  static std::size_t index(const boost::any& key) { return boost::any_cast<ExportGraph::edge_descriptor>(key).idx; }
+  const std::vector<double>& weights_;
+};
 
 std::string kind_names(std::uint8_t kinds) {
   std::string s;
@@ -84,7 +110,7 @@ void graph_write_dot(const std::string& path, const MotionGraph& g, int from, in
 }
 
 void graph_write_graphml(const std::string& path, const MotionGraph& g, int from, int to) {
-  Part part = subgraph(g, from, to);  // not const: the writer's property maps take mutable iterators
+  const Part part = subgraph(g, from, to);
   const ExportGraph& sub = part.graph;
   std::vector<int> frame(boost::num_vertices(sub));
   std::vector<std::string> kinds(boost::num_vertices(sub)), keyword(boost::num_vertices(sub));
@@ -100,7 +126,7 @@ void graph_write_graphml(const std::string& path, const MotionGraph& g, int from
   dp.property("frame", boost::make_iterator_property_map(frame.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("kinds", boost::make_iterator_property_map(kinds.begin(), boost::get(boost::vertex_index, sub)));
   dp.property("keyword", boost::make_iterator_property_map(keyword.begin(), boost::get(boost::vertex_index, sub)));
-  dp.property("weight", boost::make_iterator_property_map(part.weight.begin(), boost::get(boost::edge_index, sub)));
+  dp.insert("weight", boost::make_shared<ExactWeights>(part.weight));
   dp.property("natural", boost::make_iterator_property_map(natural.begin(), boost::get(boost::edge_index, sub)));
   write_file_atomically(path, [&](std::ostream& out) { boost::write_graphml(out, sub, dp, true); });
 }
