@@ -11,18 +11,40 @@ Gathered::Gathered(const PoseSpace& space, std::size_t k, float radius, std::vec
   kth_.clear();
 }
 
+namespace {
+
+// The largest of a max-heap replaced by d, no larger than it: d sifted down from the top. (The
+// heap's values, and so its top after every step, are those of std::pop_heap then std::push_heap;
+// this walks the heap once instead of three times.)
+void replace_top(std::vector<float>& heap, float d) {
+  const std::size_t n = heap.size();
+  std::size_t i = 0;
+  for (std::size_t c = 1; c < n; c = 2 * i + 1) {
+    if (c + 1 < n && heap[c + 1] > heap[c]) ++c;
+    if (!(heap[c] > d)) break;
+    heap[i] = heap[c];
+    i = c;
+  }
+  heap[i] = d;
+}
+
+}  // namespace
+
 void Gathered::add(float d, int r) {
   items_.push_back({d, r});
   if (k_ == 0) return;
-  if (kth_.size() < k_) {
-    kth_.push_back(d);
-    std::push_heap(kth_.begin(), kth_.end());
+  if (kth_.empty()) {
+    // Until k members are in, the radius stays as it is, and the heap of the k nearest is made
+    // once, from them, when the k-th arrives (items_ holds every member so far: nothing is dropped
+    // before 2 k + 32). The walk finds the nearest first, so each pushed onto the heap as it came
+    // rose to its top: most of the gathering's time, for frames most of which never reach k.
+    if (items_.size() < k_) return;
+    for (const Candidate& c : items_) kth_.push_back(c.d);
+    std::make_heap(kth_.begin(), kth_.end());
   } else if (d < kth_.front()) {
-    std::pop_heap(kth_.begin(), kth_.end());
-    kth_.back() = d;
-    std::push_heap(kth_.begin(), kth_.end());
+    replace_top(kth_, d);
   }
-  if (kth_.size() == k_) limit(kth_radius(space_, kth_.front()));
+  limit(kth_radius(space_, kth_.front()));
   if (items_.size() >= 2 * k_ + 32) compact();
 }
 

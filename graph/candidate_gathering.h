@@ -56,7 +56,7 @@ class Gathered {
   std::size_t k_;
   float radius_;
   std::vector<Candidate>& items_;
-  std::vector<float>& kth_;  // the k smallest member distances so far (a max-heap)
+  std::vector<float>& kth_;  // once k members are in, the k smallest distances so far (a max-heap); empty before
   std::vector<std::pair<double, int>>& ties_;
 };
 
