@@ -61,13 +61,18 @@ void Gathered::resolve(int l, std::vector<Candidate>& out) {
   for (const Candidate& c : items_)
     if (c.d <= radius_) out.push_back(c);
   if (k_ && out.size() > k_) {
-    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
+    // The k-th nearest float distance, then the members clearly nearer (first) and those within
+    // float error of it (next): two partitions, not a sort, as only these sets matter (the tied
+    // ones are ranked below, the result is sorted by r at the end).
+    const auto nearer = [](const Candidate& a, const Candidate& b) { return a.d < b.d; };
+    std::nth_element(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(k_ - 1), out.end(), nearer);
     const float kth = out[k_ - 1].d;
     const float lo = kth - 2.02f * space_.error(kth), hi = kth_radius(space_, kth);
-    std::size_t sure = 0;
-    while (sure < out.size() && out[sure].d < lo) ++sure;
+    const auto sure_end = std::partition(out.begin(), out.end(), [&](const Candidate& c) { return c.d < lo; });
+    const auto tied_end = std::partition(sure_end, out.end(), [&](const Candidate& c) { return c.d <= hi; });
+    const auto sure = static_cast<std::size_t>(sure_end - out.begin());
     ties_.clear();
-    for (std::size_t i = sure; i < out.size() && out[i].d <= hi; ++i)
+    for (std::size_t i = sure; i < static_cast<std::size_t>(tied_end - out.begin()); ++i)
       ties_.emplace_back(space_.exact(l, out[i].r), static_cast<int>(i));
     std::sort(ties_.begin(), ties_.end(), [&](const std::pair<double, int>& a, const std::pair<double, int>& b) {
       return a.first < b.first || (a.first == b.first && out[static_cast<std::size_t>(a.second)].r <

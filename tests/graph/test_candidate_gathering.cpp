@@ -113,6 +113,33 @@ TEST(CandidateGathering, FarthestFirstShrinksTheRadiusAtEveryMemberAfterK) {
   EXPECT_EQ(rs_of(out), want);
 }
 
+TEST(CandidateGathering, MembersTiedWithTheKthAreRankedByTheirDistanceInDouble) {
+  // Ten members clearly nearer than the rest, then a hundred at one float distance: the sixteen
+  // are the ten and the six of the hundred nearest to frame 0 in double (by frame when equal).
+  const SmallSpace small;
+  const neighbours::PoseSpace& space = small.space;
+  std::vector<Candidate> items;
+  std::vector<float> kth;
+  std::vector<std::pair<double, int>> ties;
+  neighbours::Gathered g(space, 16, 1000.0f, items, kth, ties);
+  std::vector<int> tied;
+  for (int r = 111; r >= 2; --r) {  // the far ones first, in descending frame order
+    const bool sure = r < 12;
+    g.add(sure ? 1.0f : 5.0f, r);
+    if (!sure) tied.push_back(r);
+  }
+  std::sort(tied.begin(), tied.end(), [&](int a, int b) {
+    const double da = space.exact(0, a), db = space.exact(0, b);
+    return da < db || (da == db && a < b);
+  });
+  std::vector<int> want = {2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+  want.insert(want.end(), tied.begin(), tied.begin() + 6);
+  std::sort(want.begin(), want.end());
+  std::vector<Candidate> out;
+  g.resolve(0, out);
+  EXPECT_EQ(rs_of(out), want);
+}
+
 TEST(CandidateGathering, NoBoundKeepsEveryMemberWithinTheRadius) {
   const SmallSpace small;
   const neighbours::PoseSpace& space = small.space;
