@@ -1,6 +1,7 @@
 #include "graph/candidate_gathering.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace gmg::neighbours {
 
@@ -13,14 +14,14 @@ Gathered::Gathered(const PoseSpace& space, std::size_t k, float radius, std::vec
 
 namespace {
 
-// The largest of a max-heap replaced by d, no larger than it: d sifted down from the top. (The
-// heap's values, and so its top after every step, are those of std::pop_heap then std::push_heap;
-// this walks the heap once instead of three times.)
-void replace_top(std::vector<float>& heap, float d) {
-  const std::size_t n = heap.size();
+// The largest of a max-heap of n values replaced by d, no larger than it: d sifted down from the
+// top. (The heap's values, and so its top after every step, are those of std::pop_heap then
+// std::push_heap; this walks the heap once instead of three times.) heap[n] is a sentinel below
+// every value, so the larger child is chosen without a branch.
+void replace_top(float* heap, std::size_t n, float d) {
   std::size_t i = 0;
   for (std::size_t c = 1; c < n; c = 2 * i + 1) {
-    if (c + 1 < n && heap[c + 1] > heap[c]) ++c;
+    c += static_cast<std::size_t>(heap[c + 1] > heap[c]);
     if (!(heap[c] > d)) break;
     heap[i] = heap[c];
     i = c;
@@ -41,8 +42,9 @@ void Gathered::add(float d, int r) {
     if (items_.size() < k_) return;
     for (const Candidate& c : items_) kth_.push_back(c.d);
     std::make_heap(kth_.begin(), kth_.end());
+    kth_.push_back(-std::numeric_limits<float>::infinity());  // replace_top's sentinel
   } else if (d < kth_.front()) {
-    replace_top(kth_, d);
+    replace_top(kth_.data(), k_, d);
   }
   limit(kth_radius(space_, kth_.front()));
   if (items_.size() >= 2 * k_ + 32) compact();

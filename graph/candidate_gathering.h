@@ -56,7 +56,8 @@ class Gathered {
   std::size_t k_;
   float radius_;
   std::vector<Candidate>& items_;
-  std::vector<float>& kth_;  // once k members are in, the k smallest distances so far (a max-heap); empty before
+  // Once k members are in, the k smallest distances so far (a max-heap) and a sentinel; empty before.
+  std::vector<float>& kth_;
   std::vector<std::pair<double, int>>& ties_;
 };
 
