@@ -42,9 +42,10 @@ float distance_of(int r) { return 1.0f + 0.5f * static_cast<float>(r); }
 
 // Adds the members in `arrival` order and checks the radius after each against the definition:
 // the starting radius until k members are in, then the smaller of it and the k-th smallest
-// distance so far plus its error. Returns what resolve gives.
+// distance so far plus its error. Returns what resolve gives, and the radius after each member in
+// out_radii when given.
 std::vector<Candidate> gather(const neighbours::PoseSpace& space, std::size_t k, float start,
-                              const std::vector<int>& arrival) {
+                              const std::vector<int>& arrival, std::vector<float>* out_radii = nullptr) {
   std::vector<Candidate> items;
   std::vector<float> kth;
   std::vector<std::pair<double, int>> ties;
@@ -60,6 +61,7 @@ std::vector<Candidate> gather(const neighbours::PoseSpace& space, std::size_t k,
       want = std::min(start, neighbours::kth_radius(space, sorted[k - 1]));
     }
     EXPECT_EQ(g.radius(), want) << "after " << so_far.size() << " members";
+    if (out_radii) out_radii->push_back(g.radius());
   }
   std::vector<Candidate> out;
   g.resolve(0, out);
@@ -107,7 +109,11 @@ TEST(CandidateGathering, FarthestFirstShrinksTheRadiusAtEveryMemberAfterK) {
   const neighbours::PoseSpace& space = small.space;
   std::vector<int> arrival(400);
   std::iota(arrival.rbegin(), arrival.rend(), 0);  // 399, 398, ..., 0
-  const std::vector<Candidate> out = gather(space, 16, 1000.0f, arrival);
+  std::vector<float> radii;
+  const std::vector<Candidate> out = gather(space, 16, 1000.0f, arrival, &radii);
+  ASSERT_EQ(radii.size(), arrival.size());
+  for (std::size_t i = 0; i + 1 < 16; ++i) EXPECT_EQ(radii[i], 1000.0f) << i;
+  for (std::size_t i = 16; i < radii.size(); ++i) EXPECT_LT(radii[i], radii[i - 1]) << i;
   std::vector<int> want(16);
   std::iota(want.begin(), want.end(), 0);
   EXPECT_EQ(rs_of(out), want);
