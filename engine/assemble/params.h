@@ -52,6 +52,10 @@ struct BlendParams {
   // decaying the offset like a transition's instead (0.2 s half-life) dragged the foot along the
   // floor, BEAT2 slide share 4 x the capture's.
   double foot_step_s = 0.5;
+  // The layered body (engine/assemble/layers.h): how much of the pelvis's difference between the
+  // lower and the upper layer the spine takes up. 1: the chest keeps the upper layer's own posture
+  // (the captured spine's answer to its own pelvis); 0: it rides rigidly on the lower pelvis.
+  double spine_follow = 1.0;
 
   // Offset and Crossfade only: frames on each side of a junction. Retries restart the search at other key nodes, so
   // some junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at 30 fps) halves the

@@ -221,6 +221,14 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
               &SearchParams::reuse_cap_plays, 0, 100),
       number_key("reuse_cap_window_s", "output seconds over which reuse_cap_plays are counted", &Config::search,
                  &SearchParams::reuse_cap_window_s),
+      bool_key("layers",
+               "layered body: the lower body plays its own calm path, changing stance only with both feet planted "
+               "(false: one path for the whole body, feet held by the foot lock)",
+               &Config::search, &SearchParams::layers),
+      number_key("rest_min_s", "new-speech pauses at least this long rest the lower body, seconds", &Config::search,
+                 &SearchParams::rest_min_s),
+      number_key("rest_lead_s", "a change of stance into a rest comes at most this long before the pause, seconds",
+                 &Config::search, &SearchParams::rest_lead_s),
       enum_key("init", "start nodes: feature or random (weak initialisation)", &Config::search, &SearchParams::init,
                kInitModeNames),
       int_key("ignore_rounds", "rounds of fallback 2, each ignoring a larger share of stopping nodes", &Config::search,
@@ -244,6 +252,10 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
                &BlendParams::foot_lock),
       number_key("foot_step_s", "seconds a released foot takes to step to where the leg puts it", &Config::blend,
                  &BlendParams::foot_step_s),
+      number_key("spine_follow",
+                 "layered body: share of the pelvis difference the spine takes up so the chest keeps the gesture's "
+                 "posture (1) or rides on the lower body's pelvis (0)",
+                 &Config::blend, &BlendParams::spine_follow),
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
        [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_trimmed(v, ','); },
        [](const Config& c) {

@@ -54,6 +54,32 @@ void drop_short_runs(std::vector<char>& flags, char value) {
   }
 }
 
+}  // namespace
+
+void foot_contacts(const std::vector<glm::dvec3>& p, const CaptureRuns& runs, double leg_length, double fps,
+                   std::vector<char>& out_contact, std::vector<char>& out_low) {
+  const int frames = static_cast<int>(p.size());
+  out_contact.assign(p.size(), 0);
+  out_low.assign(p.size(), 0);
+  for (int first = 0; first < frames;) {
+    int last = first;  // the capture run [first, last]
+    while (last + 1 < frames && runs.continues(last)) ++last;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int f = first; f <= last; ++f) lowest = std::min(lowest, p[static_cast<std::size_t>(f)].y);
+    for (int f = first; f <= last; ++f) {
+      const int g = f > first ? f - 1 : std::min(f + 1, last);
+      const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * fps;
+      out_low[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg_length;
+      out_contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg_length && out_low[static_cast<std::size_t>(f)];
+    }
+    first = last + 1;
+  }
+  drop_short_runs(out_contact, 0);  // fill short gaps first: a planted foot's noise
+  drop_short_runs(out_contact, 1);
+}
+
+namespace {
+
 // The largest horizontal root step inside capture runs.
 double largest_root_step(const Motion& m, const CaptureRuns& runs) {
   double largest = 0.0;
@@ -86,23 +112,8 @@ glm::dvec3 leg_facts(const Motion& m, const CaptureRuns& runs, const Leg& leg, i
     if (length > 0.0 && glm::length(normal) / length >= 0.3)
       hinge += glm::conjugate(wr[n - 3]) * (normal / glm::length(normal));
   }
-  std::vector<char> contact(static_cast<std::size_t>(m.frame_count), 0);
-  std::vector<char> low(contact.size(), 0);
-  for (int first = 0; first < m.frame_count;) {
-    int last = first;  // the capture run [first, last]
-    while (last + 1 < m.frame_count && runs.continues(last)) ++last;
-    double lowest = std::numeric_limits<double>::infinity();
-    for (int f = first; f <= last; ++f) lowest = std::min(lowest, p[static_cast<std::size_t>(f)].y);
-    for (int f = first; f <= last; ++f) {
-      const int g = f > first ? f - 1 : std::min(f + 1, last);
-      const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * m.fps;
-      low[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg.length;
-      contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg.length && low[static_cast<std::size_t>(f)];
-    }
-    first = last + 1;
-  }
-  drop_short_runs(contact, 0);  // fill short gaps first: a planted foot's noise
-  drop_short_runs(contact, 1);
+  std::vector<char> contact, low;
+  foot_contacts(p, runs, leg.length, m.fps, contact, low);
   for (std::size_t f = 0; f < flags.size(); ++f)
     flags[f] =
         static_cast<std::uint8_t>(flags[f] | (contact[f] ? foot_contact_bit(l) : 0) | (low[f] ? foot_low_bit(l) : 0));

@@ -46,6 +46,12 @@ struct CaptureFacts {
 // Computes them over every frame of `m`, whose capture runs are `runs` (same frame count).
 CaptureFacts capture_facts(const Motion& m, const CaptureRuns& runs);
 
+// Contact and "low" flags of one foot from its world positions `p` (one per frame, Y-up) in the
+// capture runs `runs`: low within kContactHeight leg lengths of its lowest point in the run,
+// contact when also slower than kContactSpeed leg lengths a second; short runs smoothed away.
+void foot_contacts(const std::vector<glm::dvec3>& p, const CaptureRuns& runs, double leg_length, double fps,
+                   std::vector<char>& out_contact, std::vector<char>& out_low);
+
 // Joints from the root down to j.
 std::vector<int> chain_to(const Skeleton& s, int j);
 

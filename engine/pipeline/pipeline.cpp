@@ -1,4 +1,5 @@
 #include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/lower_body.h"
 
 #include "engine/pipeline/report.h"
 
@@ -460,7 +461,10 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
   Reenactment r;
   r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
-  r.motion = assemble_motion(g, r.plan, assembly_params(config));
+  const LowerBody lower =
+      plan_lower_body(g, pause_track(events.features.values, events.total_frames), events.total_frames, config, rng);
+  r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, assembly_params(config))
+                                    : assemble_motion(g, r.plan, assembly_params(config));
   r.body = assemble_body(g, r.plan, assembly_params(config));
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
@@ -468,6 +472,8 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
       reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());
   if (nlohmann::ordered_json body = body_report(g.motion.skeleton, r.body); !body.is_null())
     r.report["body"] = std::move(body);
+  if (nlohmann::ordered_json legs = lower_body_report(g.motion.skeleton, lower); !legs.is_null())
+    r.report["lower_body"] = std::move(legs);
   r.warnings = events.warnings;
   return r;
 }
