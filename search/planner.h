@@ -1,7 +1,7 @@
 // Planning a whole reenactment: one path per test subsequence (paper 4.2, A.1; SPEC "Beam
-// search", "Randomness"). Composes the steps: start nodes (search/initialisation.h), the beam
-// search (search/beam_search.h), continuation from the previous path, retries and the three
-// fallbacks (search/fallbacks.h).
+// search", "Randomness"). Composes the steps: start nodes (search/start_ranking.h over
+// search/initialisation.h), the beam search (search/beam_search.h), continuation from the previous
+// path, retries and the three fallbacks (search/fallbacks.h).
 #pragma once
 
 #include <random>

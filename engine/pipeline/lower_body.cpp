@@ -3,7 +3,7 @@
 #include "audio/speech_features.h"
 #include "engine/assemble/layers.h"
 #include "engine/assemble/transitions.h"
-#include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/assembly.h"
 #include "graph/reference_facts.h"
 
 namespace gmg {

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/config/config.h"
-#include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/speech_analysis.h"
 #include "search/planner.h"
 
 namespace gmg {

@@ -7,7 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/pipeline/pipeline.h"
+#include "engine/config/config.h"
+#include "engine/pipeline/speech_analysis.h"
 
 namespace gmg {
 

@@ -1,0 +1,116 @@
+#include "engine/pipeline/reenact.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <utility>
+
+#include "engine/core/error.h"
+#include "engine/core/limits.h"
+#include "engine/core/strings.h"
+#include "engine/metrics/evaluate.h"
+#include "engine/pipeline/lower_body.h"
+#include "engine/pipeline/report.h"
+#include "search/segmentation.h"
+
+namespace gmg {
+
+void check_output_size(int frames, const Skeleton& skeleton, const std::string& name) {
+  const std::uint64_t bytes = static_cast<std::uint64_t>(frames) *
+                              static_cast<std::uint64_t>(std::max(1, skeleton.channel_count())) *
+                              limits::kBvhBytesPerValue;
+  if (frames > limits::kMaxOutputFrames || bytes > limits::kMaxOutputBytes)
+    throw Error(name + ": the output would have " + std::to_string(frames) + " frames of " +
+                std::to_string(skeleton.channel_count()) + " channels (about " + std::to_string(bytes >> 20) +
+                " MB of BVH); gmg writes at most " + std::to_string(limits::kMaxOutputFrames) + " frames and " +
+                std::to_string(limits::kMaxOutputBytes >> 30) + " GB");
+}
+
+void reenactment_use_betas(Reenactment& r, std::vector<double> betas, const std::string& from) {
+  r.body.betas = std::move(betas);
+  r.report["body"] = body_report(r.motion.skeleton, r.body, from);
+}
+
+Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config) {
+  config_validate(config);
+  std::mt19937_64 rng(config.seed);
+  const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
+  Reenactment r;
+  r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
+  const LowerBody lower =
+      plan_lower_body(g, pause_track(events.features.values, events.total_frames), events.total_frames, config, rng);
+  r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, assembly_params(config))
+                                    : assemble_motion(g, r.plan, assembly_params(config));
+  r.body = assemble_body(g, r.plan, assembly_params(config));
+  g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
+
+  r.report =
+      reenactment_report(r.plan, events, config, g.motion.fps, length_unit_to_cm(g.motion.skeleton), g.has_speech());
+  if (nlohmann::ordered_json body = body_report(g.motion.skeleton, r.body); !body.is_null())
+    r.report["body"] = std::move(body);
+  if (nlohmann::ordered_json legs = lower_body_report(g.motion.skeleton, lower); !legs.is_null())
+    r.report["lower_body"] = std::move(legs);
+  r.warnings = events.warnings;
+  return r;
+}
+
+std::string check_lock_joints_of_graph(const MotionGraph& g, const Config& config, const std::string& graph_name) {
+  const std::vector<std::string>& joints = config.cleanup.lock_joints;
+  if (joints.empty()) return "";
+  std::vector<std::string> names;
+  for (const Joint& j : g.motion.skeleton.joints) names.push_back(j.name);
+  const auto missing = std::find_if(joints.begin(), joints.end(), [&](const std::string& j) {
+    return std::find(names.begin(), names.end(), j) == names.end();
+  });
+  if (missing != joints.end())
+    throw Error(graph_name + ": lock_joints names '" + *missing + "', which is not a joint of its skeleton" +
+                did_you_mean(*missing, names));
+  return graph_name + ": lock_joints has no effect on a built graph (its motion was cleaned, or not, by 'gmg build')";
+}
+
+namespace {
+
+// The report of a whole reenactment: the tool and its inputs first, then reenact_events' report.
+void prepend_inputs(Reenactment& r, nlohmann::ordered_json inputs) {
+  nlohmann::ordered_json full;
+  full["tool"] = "gmg reenact";
+  full["inputs"] = std::move(inputs);
+  for (auto it = r.report.begin(); it != r.report.end(); ++it) full[it.key()] = it.value();
+  r.report = std::move(full);
+}
+
+}  // namespace
+
+Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
+                    const std::string& graph_name) {
+  check_lock_joints_of_graph(g, config, graph_name);
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  const SpeechEvents events = speech_analyse(speech, g.motion.fps, -1, config.graph, lexicon);
+  check_output_size(events.total_frames, g.motion.skeleton, speech.audio);
+  Reenactment r = naming_memory_errors(speech.audio, "reenacting", [&] { return reenact_events(g, events, config); });
+  prepend_inputs(r, {{"graph", graph_name},
+                     {"audio", speech.audio},
+                     {"transcript", speech.transcript.empty() ? nlohmann::ordered_json(nullptr)
+                                                              : nlohmann::ordered_json(speech.transcript)}});
+  return r;
+}
+
+Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
+                          const Config& config, const std::string& name, const std::string& graph_name) {
+  check_lock_joints_of_graph(g, config, graph_name);
+  check_audio_samples(sound, name);
+  std::vector<text::Word> sorted;
+  if (words) {
+    sorted = *words;
+    check_words(sorted, name);
+  }
+  const text::Lexicon lexicon = lexicon_for(config.graph);
+  const SpeechEvents events =
+      speech_events(sound, words ? &sorted : nullptr, name, g.motion.fps, -1, config.graph, lexicon);
+  check_output_size(events.total_frames, g.motion.skeleton, name);
+  Reenactment r = naming_memory_errors(name, "reenacting", [&] { return reenact_events(g, events, config); });
+  prepend_inputs(r, {{"graph", graph_name}, {"audio", name}, {"transcript", nullptr}});
+  return r;
+}
+
+}  // namespace gmg
