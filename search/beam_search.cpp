@@ -8,6 +8,7 @@ namespace gmg {
 bool is_stop_node(const MotionGraph& g, int f, const BeamRequest& request) {
   if (!request.ignore_stop.empty() && request.ignore_stop[static_cast<std::size_t>(f)]) return false;
   const NodeInfo& n = g.node(f);
+  if (request.kind == Termination::Frame) return f == request.stop_frame;
   if (request.kind == Termination::Keyword) return (n.kinds & kKeywordNode) && n.keyword == request.keyword;
   return (n.kinds & (kOnsetNode | kBreakNode)) != 0;
 }

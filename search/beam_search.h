@@ -17,6 +17,7 @@ struct BeamRequest {
   int target_length = 1;         // l_sub (>= 1)
   Termination kind = Termination::Rhythm;
   std::string keyword;  // for Keyword termination
+  int stop_frame = -1;  // for Frame termination
   // Frames whose stopping role is ignored (fallback 2); empty = none. Size 0 or frame_count.
   std::vector<char> ignore_stop;
   // Natural planner: a cost each start node's paths begin with (its junction cost); empty = 0.

@@ -18,23 +18,22 @@ constexpr std::size_t kFromCandidates = 8;  // stance frames weighed as the plac
 
 class LowerPlanner {
  public:
-  LowerPlanner(const Stance& stance, const CaptureRuns& runs, const std::vector<float>& pause, int total, double fps,
+  LowerPlanner(const Stance& stance, const CaptureRuns& runs, const std::vector<Anchor>& rests, int total, double fps,
                const LowerBodyParams& params, std::mt19937_64& rng)
       : st_(stance), runs_(runs), total_(total), fps_(fps), params_(params), rng_(rng) {
     const int frames = runs.frame_count();
     plays_.assign(static_cast<std::size_t>(frames), 0);
     for (int f = 0; f < frames; ++f)
       if (st_.planted[static_cast<std::size_t>(f)]) planted_.push_back(f);
-    // Still frames ahead of every frame, inside its capture run, and the longest rest the reference
-    // holds: what a rest in the output may last.
+    // Still frames ahead of every frame, inside its capture run.
     still_ahead_.assign(static_cast<std::size_t>(frames), 0);
     for (int f = frames - 1; f >= 0; --f) {
       const bool still = st_.speed[static_cast<std::size_t>(f)] < st_.still_speed;
       const bool next = f + 1 < frames && runs_.continues(f);
       still_ahead_[static_cast<std::size_t>(f)] = still ? 1 + (next ? still_ahead_[static_cast<std::size_t>(f) + 1] : 0) : 0;
-      longest_rest_ = std::max(longest_rest_, still_ahead_[static_cast<std::size_t>(f)]);
     }
-    windows_ = rest_windows(pause, fps, params.rest_min_s);
+    for (const Anchor& a : rests)
+      if (a.kind == Fixed::Rest) windows_.push_back({a.start + a.lead, a.start + a.length});
     typical_gap_ = typical_gap();
     if (params.variety > 0.0) {
       const int block = std::max(1, static_cast<int>(std::lround(fps)));
@@ -60,7 +59,7 @@ class LowerPlanner {
         const auto [a, b] = windows_[next_window];
         if (a >= std::min(end, total_)) break;
         if (a < t + min_gap) continue;
-        need = std::min(b - a, longest_rest_);
+        need = b - a;
         if (still_ahead_[static_cast<std::size_t>(s + (a - t))] >= need) continue;
         rest_at = a;
         break;
@@ -206,7 +205,7 @@ class LowerPlanner {
 
   int start_frame() {
     std::vector<std::pair<double, int>> scored;
-    const int need = !windows_.empty() && windows_.front().first == 0 ? std::min(windows_.front().second, longest_rest_) : 0;
+    const int need = !windows_.empty() && windows_.front().first == 0 ? windows_.front().second : 0;
     const std::vector<int>& pool = planted_.empty() ? all_frames() : planted_;
     for (int b : pool) {
       // The longer the stretch can play, the fewer changes: a start that plays the whole output
@@ -234,7 +233,6 @@ class LowerPlanner {
   std::vector<int> planted_, all_;
   std::vector<int> still_ahead_;
   std::vector<std::uint16_t> plays_;
-  int longest_rest_ = 0;
   std::vector<std::pair<int, int>> windows_;
   double typical_gap_ = 1.0;
   std::vector<char> withheld_;
@@ -243,31 +241,15 @@ class LowerPlanner {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> rest_windows(const std::vector<float>& pause, double fps, double rest_min_s) {
-  std::vector<std::pair<int, int>> out;
-  const int shortest = std::max(1, static_cast<int>(std::lround(rest_min_s * fps)));
-  const int n = static_cast<int>(pause.size());
-  for (int i = 0; i < n;) {
-    if (pause[static_cast<std::size_t>(i)] < 0.5f) {
-      ++i;
-      continue;
-    }
-    int j = i;
-    while (j < n && pause[static_cast<std::size_t>(j)] >= 0.5f) ++j;
-    if (j - i >= shortest) out.push_back({i, j});
-    i = j;
-  }
-  return out;
-}
-
-LowerPlan plan_lower_body(const Stance& stance, const CaptureRuns& runs, const std::vector<float>& pause,
+LowerPlan plan_lower_body(const Stance& stance, const CaptureRuns& runs, const std::vector<Anchor>& rests,
                           int total_frames, double fps, const LowerBodyParams& params, std::mt19937_64& rng) {
   if (!stance.known) throw Error("lower body: the reference's stance is not known");
   if (static_cast<int>(stance.planted.size()) != runs.frame_count())
     throw Error("lower body: the stance does not cover the reference");
-  if (!pause.empty() && static_cast<int>(pause.size()) != total_frames)
-    throw Error("lower body: the pauses do not cover the output");
-  return LowerPlanner(stance, runs, pause, total_frames, fps, params, rng).run();
+  for (const Anchor& a : rests)
+    if (a.start < 0 || a.length < 1 || a.start + a.length > total_frames)
+      throw Error("lower body: a rest lies outside the output");
+  return LowerPlanner(stance, runs, rests, total_frames, fps, params, rng).run();
 }
 
 }  // namespace gmg

@@ -4,10 +4,9 @@
 // weight: with both feet planted and the hips slow (engine/motion/stance.h).
 //
 // A stretch plays on until one of three things asks for a change:
-// - a pause of the new speech (rest_min_s or longer) is coming and the stretch would not be still
-//   there: the change, at the last stance frame of the rest_lead_s before the pause, goes to a stance
-//   from which the reference rests for as long as the pause, up to as long as the reference itself
-//   ever rests (the rest is held as long as the speaker holds one, no longer);
+// - a rest of the output (search/anchors.h: where the new speech pauses) is coming and the stretch
+//   would not be still there: the change, at a stance frame of the rest_lead_s before the rest, goes
+//   to a stance from which the reference's legs stay still for as long as the rest;
 // - its capture run ends (a clip's end): the change goes to a stance with a long run ahead;
 // - nothing else: the speaker's own weight shifts play as captured, at the speaker's own rate.
 // Every change goes to the stance nearest the one it leaves (feet, hips' height and tilt in the
@@ -23,11 +22,11 @@
 #include "engine/core/enum_names.h"
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/stance.h"
+#include "search/anchors.h"
 
 namespace gmg {
 
 struct LowerBodyParams {
-  double rest_min_s = 0.5;   // test pauses at least this long rest the lower body ((0, 10])
   double rest_lead_s = 0.7;  // a change into a rest comes at most this long before the pause ((0, 5])
   int reuse_cap_plays = 3;   // a stretch played this often is not played again (0: no cap)
   double variety = 0.3;      // share of the reference's seconds a seed withholds as targets ([0, 0.9])
@@ -50,13 +49,10 @@ struct LowerPlan {
   std::vector<LowerSegment> segments;  // consecutive, covering the output
 };
 
-// The output frames that rest: runs of `pause` (per output frame, 0..1, audio::pause_weight of the
-// new speech) at or above 0.5 lasting rest_min_s or longer, as [first, last) pairs.
-std::vector<std::pair<int, int>> rest_windows(const std::vector<float>& pause, double fps, double rest_min_s);
-
-// Plans `total_frames` output frames (>= 0). `stance` known, over `runs`' frames. `pause` holds
-// total_frames values (or none: no rests). Draws from rng (the job's generator).
-LowerPlan plan_lower_body(const Stance& stance, const CaptureRuns& runs, const std::vector<float>& pause,
+// Plans `total_frames` output frames (>= 0). `stance` known, over `runs`' frames. `rests` are the
+// output's rests (search/anchors.h rest_anchors; others are ignored), the same the upper body
+// plays still stretches in. Draws from rng (the job's generator).
+LowerPlan plan_lower_body(const Stance& stance, const CaptureRuns& runs, const std::vector<Anchor>& rests,
                           int total_frames, double fps, const LowerBodyParams& params, std::mt19937_64& rng);
 
 }  // namespace gmg

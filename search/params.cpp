@@ -29,6 +29,7 @@ void search_params_validate(const SearchParams& p) {
   require_param(p.reuse_halflife_s > 0 && p.reuse_halflife_s <= 1e6, "reuse_halflife_s must be in (0, 1e6]");
   require_param(p.reuse_cap_plays >= 0 && p.reuse_cap_plays <= 100, "reuse_cap_plays must be in [0, 100]");
   require_param(p.reuse_cap_window_s >= 0 && p.reuse_cap_window_s <= 1e6, "reuse_cap_window_s must be in [0, 1e6]");
+  require_param(p.no_return_s >= 0 && p.no_return_s <= 1e6, "no_return_s must be in [0, 1e6]");
   require_param(p.rest_min_s > 0 && p.rest_min_s <= 10, "rest_min_s must be in (0, 10]");
   require_param(p.rest_lead_s > 0 && p.rest_lead_s <= 5, "rest_lead_s must be in (0, 5]");
 }

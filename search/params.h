@@ -112,14 +112,18 @@ struct SearchParams {
   // of new speech). 0 plays = no cap.
   int reuse_cap_plays = 3;
   double reuse_cap_window_s = 90.0;
+  // And no jump into a frame played within the last no_return_s output seconds (a path that plays
+  // 497-505, then 493-510 shows the same stroke twice in a row). 0: allowed.
+  double no_return_s = 10.0;
 
   // ---- the layered body (search/lower_body.h; natural planner only) ----
   // The lower body (root, hips, legs) plays its own path of long contiguous stretches, changing
   // only where both feet are planted; the upper body follows the speech (engine/motion/body_layers.h).
   // false: one path for the whole body, its feet held by the foot lock (engine/assemble/foot_lock.h).
   bool layers = true;
-  // New-speech pauses at least rest_min_s long rest the lower body; a change of stance into a rest
-  // comes at most rest_lead_s before the pause (docs/decisions.md).
+  // New-speech pauses at least rest_min_s long rest (search/anchors.h); a rest starts rest_lead_s
+  // before its pause: the upper body plays the reference's own way into a rest there (its
+  // transition has decayed by the pause), and the lower body changes stance there when it must.
   double rest_min_s = 0.5;
   double rest_lead_s = 0.7;
 };

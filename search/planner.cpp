@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
+#include "search/anchors.h"
 #include "search/continuation.h"
 #include "search/initialisation.h"
 #include "search/junction.h"
+#include "search/rests.h"
 #include "search/reuse.h"
 #include "search/speech_match.h"
 #include "search/start_ranking.h"
@@ -47,10 +50,12 @@ class Planner {
         junction_(g),
         speech_(g, natural_ ? test_speech : std::vector<float>{}, total_frames(subs), params.rest_weight),
         reuse_(g.frame_count(), params.reuse_halflife_s * g.motion.fps, params.reuse_cap_plays,
-               static_cast<int>(std::lround(params.reuse_cap_window_s * g.motion.fps))),
+               static_cast<int>(std::lround(params.reuse_cap_window_s * g.motion.fps)),
+               static_cast<int>(std::lround(params.no_return_s * g.motion.fps))),
         // The preference is drawn before the ranker's sample seed: the order of the generator's draws.
         preference_(natural_ && params.variety > 0.0 ? SeedPreference(g, params.variety, rng) : SeedPreference()),
-        ranker_(g, subs, params, natural_, index_, junction_, speech_, reuse_, preference_, rng) {}
+        ranker_(g, subs, params, natural_, index_, junction_, speech_, reuse_, preference_, rng),
+        rests_(g) {}
 
   Plan run() {
     Plan plan;
@@ -189,12 +194,24 @@ class Planner {
     if (natural_ && seg.path.size() >= 2) seg.path.pop_back();
   }
 
+  // Candidates that replay a frame past its cap (or jump back into what was just played) are no
+  // candidates: the fallbacks look further, and the last one plays the capture on.
+  void drop_capped(std::vector<BeamCandidate>& candidates) const {
+    if (!natural_ || params_.reuse_weight <= 0.0) return;
+    const double capped = params_.reuse_weight * ReuseTracker::kCapCost;
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](const BeamCandidate& c) { return c.cost >= capped; }),
+                     candidates.end());
+  }
+
   // A fallback's searches (each one counts as a retry); on success records it in seg.
   bool try_fallback(std::size_t k, BeamRequest request, Fallback fallback, PlannedSegment& seg) {
     natural_request(seg.sub, request);
     BeamResult r = attempts(k, request, {}, &seg.retries, params_.retries + 1);
     ++seg.retries;
     if (!r.accepted) return false;
+    drop_capped(r.candidates);
+    if (r.candidates.empty()) return false;
     seg.fallback = fallback;
     const BeamCandidate& c = choose(k, r.candidates);
     accept(seg, c.path, c.cost);
@@ -215,6 +232,59 @@ class Planner {
     }
   }
 
+  // A pinned stretch plays its graph frames as given; a rest plays the reference's stretch of the
+  // subsequence's length that is stillest for what it costs to get there: the junction from where
+  // the output is (nothing when it plays on into it), the stillness (activity, 1 = the speaker's
+  // typical motion) weighed like a pause's rest cost, reuse and the seed's preference.
+  void plan_fixed(PlannedSegment& seg) {
+    seg.accepted = true;
+    const int length = seg.sub.length;
+    if (seg.sub.fixed == Fixed::Pin) {
+      for (int i = 0; i < length; ++i) seg.path.push_back(seg.sub.source + i);
+      return;
+    }
+    // The still part follows `lead` frames of the reference's own way into it.
+    const int lead = std::min(seg.sub.lead, length - 1), still = length - lead;
+    std::vector<int> candidates;
+    for (int f : rests_.stillest(still, kRestCandidates))
+      if (f - lead >= 0 && std::isfinite(rests_.stillness(f - lead, length))) candidates.push_back(f - lead);
+    if (continuing_from_ >= 0 && std::isfinite(rests_.stillness(continuing_from_, length)))
+      candidates.push_back(continuing_from_);
+    if (candidates.empty()) {  // a graph without activity: play on, or hold
+      seg.path = continuing_from_ >= 0 ? natural_run(g_, continuing_from_, length) : std::vector<int>{reference_ < 0 ? 0 : reference_};
+      return;
+    }
+    std::vector<BeamCandidate> scored;
+    for (int f : candidates) {
+      std::vector<int> path(static_cast<std::size_t>(length));
+      std::iota(path.begin(), path.end(), f);
+      const double junction = reference_ < 0 || f == continuing_from_ ? 0.0 : params_.junction_beam * junction_.cost(reference_, f);
+      const double cost = junction + kRestStillness * params_.rest_weight * rests_.stillness(f + lead, still) +
+                          params_.reuse_weight * reuse_.path_cost(path, seg.sub.start) +
+                          (f == continuing_from_ ? 0.0 : preference_.of(f));
+      scored.push_back({std::move(path), cost});
+    }
+    std::stable_sort(scored.begin(), scored.end(),
+                     [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
+    std::vector<BeamCandidate> uncapped = scored;
+    drop_capped(uncapped);
+    if (!uncapped.empty()) scored.swap(uncapped);  // else the least replayed of the few rests there are
+    constexpr double kNearEqual = 0.05;
+    std::size_t near = 1;
+    while (near < scored.size() && scored[near].cost <= scored.front().cost + kNearEqual) ++near;
+    const BeamCandidate& c = scored[random_below(rng_, near)];
+    seg.path = c.path;
+    seg.cost = c.cost;
+    seg.reuse_cost = reuse_.path_cost(c.path, seg.sub.start);
+  }
+  // Rests weigh this many stillest stretches (and the natural continuation): the reference's still
+  // stretches are few, so more only adds neighbours of the same ones.
+  static constexpr int kRestCandidates = 64;
+  // A rest's stillness cost per unit of activity, as a share of rest_weight: at the default 12, a
+  // stretch moving as the speaker typically does costs 3 more than a still one, three typical
+  // transitions: a jump to rest is worth it, a far one is not.
+  static constexpr double kRestStillness = 0.25;
+
   PlannedSegment plan_one(std::size_t k, const std::vector<int>& previous_path, bool previous_clean) {
     PlannedSegment seg;
     seg.sub = subs_[k];
@@ -222,12 +292,17 @@ class Planner {
     request.target_length = seg.sub.length;
     request.kind = seg.sub.kind;
     request.keyword = seg.sub.keyword;
+    request.stop_frame = seg.sub.stop_frame;
     // The frame the output would continue into; junction costs are measured from it.
     const int last = previous_path.empty() ? -1 : previous_path.back();
     reference_ = last < 0 ? -1 : (continues(last) ? last + 1 : last);
     continuing_from_ = last >= 0 && continues(last) ? last + 1 : -1;
     seg.junction_from = reference_;
     seg.reuse_cost = 0.0;
+    if (seg.sub.fixed != Fixed::None) {
+      plan_fixed(seg);
+      return seg;
+    }
     // Paper 4.2.2: after a clean result, the next search starts from the children of its last
     // node. The natural planner always does, since its junction costs price every start.
     std::vector<int> first_starts;
@@ -249,6 +324,7 @@ class Planner {
           candidates.empty() || (params_.reuse_weight > 0.0 && continuation_capped) ? params_.retries + 1 : 1;
       BeamResult r = attempts(k, request, first_starts, &seg.retries, max_attempts);
       candidates.insert(candidates.end(), r.candidates.begin(), r.candidates.end());
+      drop_capped(candidates);
       if (!candidates.empty()) {
         std::stable_sort(candidates.begin(), candidates.end(),
                          [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
@@ -265,7 +341,7 @@ class Planner {
       }
     }
     if (params_.fallbacks) {
-      if (request.kind == Termination::Keyword) {
+      if (request.kind != Termination::Rhythm) {
         request = fallback_rhythm_request(request);
         if (try_fallback(k, request, Fallback::KeywordToRhythm, seg)) return seg;
       }
@@ -312,6 +388,7 @@ class Planner {
   ReuseTracker reuse_;
   SeedPreference preference_;
   StartNodeRanker ranker_;
+  RestFinder rests_;
   int reference_ = -1;        // the current subsequence's junction reference frame
   int continuing_from_ = -1;  // the natural successor of the previous path, or -1
 };
@@ -319,13 +396,14 @@ class Planner {
 }  // namespace
 
 Plan plan_reenactment(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params,
-                      std::mt19937_64& rng, const std::vector<float>& test_speech) {
+                      std::mt19937_64& rng, const std::vector<float>& test_speech, const std::vector<Anchor>& anchors) {
   search_params_validate(params);
-  if (params.planner == PlannerMode::Natural && params.merge_below > 1) {
-    const std::vector<Subsequence> merged = merge_short_subsequences(subs, params.merge_below);
+  if (params.planner == PlannerMode::Natural && (params.merge_below > 1 || !anchors.empty())) {
+    const std::vector<Subsequence> merged =
+        place_anchors(merge_short_subsequences(subs, params.merge_below), anchors, params.merge_below);
     return Planner(g, merged, params, rng, test_speech).run();
   }
-  return Planner(g, subs, params, rng, test_speech).run();
+  return Planner(g, place_anchors(subs, anchors, 0), params, rng, test_speech).run();
 }
 
 }  // namespace gmg

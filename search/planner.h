@@ -10,6 +10,7 @@
 #include "graph/motion_graph.h"
 #include "search/beam_search.h"
 #include "search/fallbacks.h"
+#include "search/anchors.h"
 #include "search/params.h"
 #include "search/segmentation.h"
 
@@ -47,7 +48,10 @@ struct Plan {
 // first. Always ends, with one path per subsequence. `test_speech` holds the test speech features
 // (total frames x g.speech_dims, audio/speech_features.h) for the speech-driven costs of the
 // natural planner; empty (or a graph without speech features) plans without them.
+// `anchors` (search/anchors.h: rests and pins; sorted, not overlapping) are placed among the
+// subsequences after the natural planner's merge, and the planner plans around them.
 Plan plan_reenactment(const MotionGraph& g, const std::vector<Subsequence>& subs, const SearchParams& params,
-                      std::mt19937_64& rng, const std::vector<float>& test_speech = {});
+                      std::mt19937_64& rng, const std::vector<float>& test_speech = {},
+                      const std::vector<Anchor>& anchors = {});
 
 }  // namespace gmg

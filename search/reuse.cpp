@@ -6,11 +6,12 @@
 
 namespace gmg {
 
-ReuseTracker::ReuseTracker(int frames, double halflife, int cap_plays, int cap_window)
+ReuseTracker::ReuseTracker(int frames, double halflife, int cap_plays, int cap_window, int return_window)
     : frames_(std::max(0, frames)),
       decay_per_frame_(std::log(2.0) / std::max(1e-9, halflife)),
       cap_plays_(std::max(0, cap_plays)),
       cap_window_(std::max(0, cap_window)),
+      return_window_(std::max(0, return_window)),
       blocks_(static_cast<std::size_t>(frames_ / kBlock + 1)) {}
 
 ReuseTracker::Block& ReuseTracker::block_to_play(int f) {

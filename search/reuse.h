@@ -26,7 +26,7 @@ class ReuseTracker {
 
   // frames: the graph's frame count; halflife in output frames (> 0); cap_plays (0 = no cap)
   // plays within cap_window output frames.
-  ReuseTracker(int frames, double halflife, int cap_plays = 0, int cap_window = 0);
+  ReuseTracker(int frames, double halflife, int cap_plays = 0, int cap_window = 0, int return_window = 0);
 
   // The frames of a committed path, played from output frame `time` on.
   void play(const std::vector<int>& path, int time);
@@ -34,13 +34,17 @@ class ReuseTracker {
   // Frame f's decayed play count at output frame `time`.
   double plays(int f, int time) const;
 
-  // Whether frame f has had cap_plays plays within cap_window output frames before `time`.
+  // Whether frame f has had cap_plays plays within cap_window output frames before `time`, or was
+  // played within return_window output frames before it (a jump back into what was just played:
+  // the same gesture twice within seconds reads as a stutter, not as a speaker's habit).
   bool capped(int f, int time) const {
-    if (cap_plays_ <= 0) return false;
     const Block* b = block(f);
+    if (!b) return false;
+    const std::size_t k = static_cast<std::size_t>(f % kBlock);
+    if (return_window_ > 0 && b->count[k] > 0.0 && b->last[k] > time - return_window_) return true;
+    if (cap_plays_ <= 0) return false;
     // recent holds f's last cap_plays play times, oldest first.
-    return b &&
-           b->recent[static_cast<std::size_t>(f % kBlock) * static_cast<std::size_t>(cap_plays_)] > time - cap_window_;
+    return b->recent[k * static_cast<std::size_t>(cap_plays_)] > time - cap_window_;
   }
 
   // Its cost: plays squared, plus kCapCost when capped.
@@ -73,6 +77,7 @@ class ReuseTracker {
   double decay_per_frame_;  // ln 2 / halflife
   int cap_plays_;
   int cap_window_;
+  int return_window_;
   std::vector<std::unique_ptr<Block>> blocks_;
 };
 

@@ -10,6 +10,14 @@ namespace gmg {
 enum class Termination {
   Rhythm,   // end at any onset or break node
   Keyword,  // end at a keyword node with the same label
+  Frame,    // end at graph frame `stop_frame` (the first frame of a pinned stretch that follows)
+};
+
+// What decides a subsequence's frames (search/anchors.h): the planner, or an anchor.
+enum class Fixed {
+  None,  // planned (the paper's subsequence)
+  Rest,  // a still stretch of the reference, chosen by the planner where the new speech pauses
+  Pin,   // graph frames [source, source + length), given
 };
 
 struct Subsequence {
@@ -17,6 +25,10 @@ struct Subsequence {
   int length = 0;  // target length l_sub in frames (>= 1)
   Termination kind = Termination::Rhythm;
   std::string keyword;  // the label when kind == Keyword
+  int stop_frame = -1;  // the graph frame when kind == Frame
+  Fixed fixed = Fixed::None;
+  int source = -1;  // Pin: the first graph frame it plays
+  int lead = 0;     // Rest: frames before the still part (the reference's own way into its rest)
 };
 
 // Boundaries are the sorted unique key frames in (0, total) together with 0 and total. A

@@ -1,10 +1,13 @@
 #include "engine/pipeline/lower_body.h"
 
+#include <cmath>
+
 #include "audio/speech_features.h"
 #include "engine/assemble/layers.h"
 #include "engine/assemble/transitions.h"
 #include "engine/pipeline/assembly.h"
 #include "graph/reference_facts.h"
+#include "search/rests.h"
 
 namespace gmg {
 
@@ -18,8 +21,16 @@ std::vector<float> pause_track(const std::vector<float>& features, int frames) {
   return out;
 }
 
-LowerBody plan_lower_body(const MotionGraph& g, const std::vector<float>& pause, int total_frames, const Config& config,
-                          std::mt19937_64& rng) {
+std::vector<Anchor> output_rests(const MotionGraph& g, const std::vector<float>& features, int total_frames,
+                                 const Config& config) {
+  if (config.search.planner != PlannerMode::Natural || !g.has_speech()) return {};
+  const std::vector<float> pause = pause_track(features, total_frames);
+  return rest_anchors(pause, g.motion.fps, config.search.rest_min_s, RestFinder(g).hold(),
+                      static_cast<int>(std::lround(config.search.rest_lead_s * g.motion.fps)));
+}
+
+LowerBody plan_lower_body(const MotionGraph& g, const std::vector<Anchor>& rests, int total_frames,
+                          const Config& config, std::mt19937_64& rng) {
   LowerBody out;
   if (!config.search.layers || config.search.planner != PlannerMode::Natural) return out;
   BodyLayers layers = find_body_layers(g.motion);
@@ -28,11 +39,10 @@ LowerBody plan_lower_body(const MotionGraph& g, const std::vector<float>& pause,
   const Stance stance = stance_facts(g.motion, runs, layers);
   if (!stance.known) return out;
   LowerBodyParams p;
-  p.rest_min_s = config.search.rest_min_s;
   p.rest_lead_s = config.search.rest_lead_s;
   p.reuse_cap_plays = config.search.reuse_cap_plays;
   p.variety = config.search.variety;
-  out.plan = plan_lower_body(stance, runs, pause, total_frames, g.motion.fps, p, rng);
+  out.plan = plan_lower_body(stance, runs, rests, total_frames, g.motion.fps, p, rng);
   out.layers = std::move(layers);
   return out;
 }

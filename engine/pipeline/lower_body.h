@@ -22,10 +22,16 @@ struct LowerBody {
 };
 
 // The lower body's plan, when config asks for layers (the natural planner with `layers`) and the
-// graph's skeleton has two legs; otherwise layers stay empty. `pause` per output frame (0..1), from
-// the new speech's loudness. Draws from rng after the upper body's plan.
-LowerBody plan_lower_body(const MotionGraph& g, const std::vector<float>& pause, int total_frames, const Config& config,
-                          std::mt19937_64& rng);
+// graph's skeleton has two legs; otherwise layers stay empty. `rests`: the output's rests (the
+// upper body's). Draws from rng after the upper body's plan.
+LowerBody plan_lower_body(const MotionGraph& g, const std::vector<Anchor>& rests, int total_frames,
+                          const Config& config, std::mt19937_64& rng);
+
+// The output's rests (search/anchors.h rest_anchors) for the new speech's features: its pauses of
+// rest_min_s or longer, each held as long as the reference ever rests (search/rests.h); none for
+// the paper's planner or a graph without speech or activity.
+std::vector<Anchor> output_rests(const MotionGraph& g, const std::vector<float>& features, int total_frames,
+                                 const Config& config);
 
 // The motion of a plan with a layered body: the upper plan and the lower plan each assembled
 // (without the foot lock: the lower body plays the capture's own feet), joined at the spine.

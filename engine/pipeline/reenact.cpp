@@ -36,9 +36,9 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   std::mt19937_64 rng(config.seed);
   const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
   Reenactment r;
-  r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values);
-  const LowerBody lower =
-      plan_lower_body(g, pause_track(events.features.values, events.total_frames), events.total_frames, config, rng);
+  const std::vector<Anchor> rests = output_rests(g, events.features.values, events.total_frames, config);
+  r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values, rests);
+  const LowerBody lower = plan_lower_body(g, rests, events.total_frames, config, rng);
   r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, assembly_params(config))
                                     : assemble_motion(g, r.plan, assembly_params(config));
   r.body = assemble_body(g, r.plan, assembly_params(config));

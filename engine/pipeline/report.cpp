@@ -37,8 +37,10 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
     nlohmann::ordered_json item;
     item["start_frame"] = s.sub.start;
     item["target_length"] = s.sub.length;
-    item["termination"] = s.sub.kind == Termination::Keyword ? "keyword" : "rhythm";
+    item["termination"] = s.sub.kind == Termination::Keyword ? "keyword" : (s.sub.kind == Termination::Frame ? "frame" : "rhythm");
     if (s.sub.kind == Termination::Keyword) item["keyword"] = s.sub.keyword;
+    if (s.sub.kind == Termination::Frame) item["stop_frame"] = s.sub.stop_frame;
+    if (s.sub.fixed != Fixed::None) item["fixed"] = s.sub.fixed == Fixed::Rest ? "rest" : "pin";
     item["accepted"] = s.accepted;
     item["continued"] = s.continued;
     item["junction_gap_cm"] = s.junction_gap * length_to_cm;
