@@ -14,6 +14,12 @@ constexpr double kNearEqual = 0.05;  // targets within this cost of the best are
 constexpr double kWithheld = 1.0;    // what a target the seed withholds costs (half a typical stance gap)
 constexpr double kLongRunS = 5.0;
 constexpr double kRunEndWindowS = 6.0;  // a change before a run's end is sought in its last seconds
+constexpr double kRestWindowS = 3.0;    // a change into a rest is sought in the seconds before it
+// A rest whose legs are not still costs kStillWeight per share of its frames that move; a change of
+// stance is made for it only when that saves more than the change's own cost (its gap, ...) plus
+// kChangeCost: a stance change the legs would not need is itself motion.
+constexpr double kStillWeight = 2.0;
+constexpr double kChangeCost = 0.5;
 constexpr std::size_t kFromCandidates = 8;  // stance frames weighed as the place of a change    // a stretch that can play this long needs no other change soon
 
 class LowerPlanner {
@@ -53,25 +59,22 @@ class LowerPlanner {
     std::size_t next_window = 0;
     for (;;) {
       const int end = t + (runs_.last(s) - s) + 1;  // the first output frame this stretch cannot play
-      // The next rest this stretch would not be still for.
-      int rest_at = -1, need = 0;
+      // The next rest a change of stance makes stiller than playing on, by more than the change costs.
+      Change c;
+      LowerChange why = LowerChange::Rest;
       for (; next_window < windows_.size(); ++next_window) {
         const auto [a, b] = windows_[next_window];
         if (a >= std::min(end, total_)) break;
         if (a < t + min_gap) continue;
-        need = b - a;
-        if (still_ahead_[static_cast<std::size_t>(s + (a - t))] >= need) continue;
-        rest_at = a;
-        break;
+        const int need = b - a;
+        const double stay = kStillWeight * deficit(s + (a - t), need);
+        if (stay == 0.0) continue;
+        c = change(s, t, a - static_cast<int>(std::lround(kRestWindowS * fps_)), a, -1, a, need);
+        if (c.at >= 0 && c.cost + kChangeCost < stay) break;
+        c = Change{};
       }
-      if (rest_at < 0 && end >= total_) break;
-      LowerChange why;
-      Change c;
-      if (rest_at >= 0) {
-        why = LowerChange::Rest;
-        c = change(s, t, rest_at - static_cast<int>(std::lround(params_.rest_lead_s * fps_)), rest_at, rest_at, rest_at,
-                   need);
-      } else {
+      if (c.at < 0) {
+        if (end >= total_) break;
         // Before the run ends, at the stance of the last few seconds that leads to the nearest one.
         why = LowerChange::RunEnd;
         c = change(s, t, end - static_cast<int>(std::lround(kRunEndWindowS * fps_)), end - 2, end - 1, -1, 0);
@@ -122,10 +125,7 @@ class LowerPlanner {
     const double dx = st_.place[2 * static_cast<std::size_t>(from)] - st_.place[2 * static_cast<std::size_t>(b)];
     const double dz = st_.place[2 * static_cast<std::size_t>(from) + 1] - st_.place[2 * static_cast<std::size_t>(b) + 1];
     c += 0.5 * std::hypot(dx, dz);
-    if (need > 0) {
-      const int still = still_ahead_[static_cast<std::size_t>(b + lead)];
-      c += 2.0 * static_cast<double>(need - std::min(need, still)) / need;
-    }
+    c += kStillWeight * deficit(b + lead, need);
     const int wanted = std::min(left, static_cast<int>(std::lround(kLongRunS * fps_)));
     if (wanted > 0) c += 0.5 * std::max(0.0, 1.0 - static_cast<double>(last - b + 1) / wanted);
     int most = 0;
@@ -175,32 +175,41 @@ class LowerPlanner {
   // the pair of least cost (the later one among equals). Without a stance frame in the window, at
   // `otherwise`.
   struct Change {
-    int at = 0, from = 0, to = 0;
+    int at = -1, from = 0, to = 0;
+    double cost = 0.0;
   };
+  // The change of stance out of the current stretch (graph frame s at output frame t) within output
+  // frames [lo, hi]: from each of up to kFromCandidates of its stance frames there (spread over the
+  // window), the best target; the pair of least cost. Without a stance frame in the window, at
+  // `otherwise`, or none (at = -1) when `otherwise` is negative. A rest at output frame rest_at
+  // needs `need` still frames from there.
   Change change(int s, int t, int lo, int hi, int otherwise, int rest_at, int need) {
     std::vector<int> stances;
     for (int at = hi; at >= std::max(lo, t + 1); --at) {
       const int f = s + (at - t);
       if (f < runs_.frame_count() && st_.planted[static_cast<std::size_t>(f)]) stances.push_back(at);
     }
-    // At most kFromCandidates of them, spread over the window (latest first).
     std::vector<int> times;
     for (std::size_t k = 0; k < std::min(kFromCandidates, stances.size()); ++k)
       times.push_back(stances[k * stances.size() / std::min(kFromCandidates, stances.size())]);
-    if (times.empty()) times.push_back(std::max(otherwise, t + 1));
+    if (times.empty()) {
+      if (otherwise < 0) return {};
+      times.push_back(std::max(otherwise, t + 1));
+    }
     Change best;
-    double best_cost = std::numeric_limits<double>::infinity();
+    best.cost = std::numeric_limits<double>::infinity();
     for (int at : times) {
       const int from = s + (at - t);
       const int lead = rest_at >= 0 ? std::max(0, rest_at - at) : 0;
-      const auto [c, to] = target(from, lead, need, total_ - at);
-      if (c < best_cost || best_cost == std::numeric_limits<double>::infinity()) {
-        if (!(c < best_cost) && best_cost < std::numeric_limits<double>::infinity()) continue;
-        best_cost = c;
-        best = {at, from, to};
-      }
+      const auto [cost, to] = target(from, lead, need, total_ - at);
+      if (best.at < 0 || cost < best.cost) best = {at, from, to, cost};
     }
     return best;
+  }
+
+  // The share of `need` frames from graph frame f that are not still (0 when need is 0).
+  double deficit(int f, int need) const {
+    return need > 0 ? static_cast<double>(need - std::min(need, still_ahead_[static_cast<std::size_t>(f)])) / need : 0.0;
   }
 
   int start_frame() {
@@ -211,7 +220,7 @@ class LowerPlanner {
       // The longer the stretch can play, the fewer changes: a start that plays the whole output
       // through costs 0.
       double c = std::max(0.0, 1.0 - static_cast<double>(runs_.last(b) - b + 1) / std::max(1, total_));
-      if (need > 0) c += 0.5 * static_cast<double>(need - std::min(need, still_ahead_[static_cast<std::size_t>(b)])) / need;
+      c += 0.5 * kStillWeight * deficit(b, need);
       if (withheld(b)) c += kWithheld;
       scored.push_back({c, b});
     }

@@ -5,8 +5,9 @@
 //
 // A stretch plays on until one of three things asks for a change:
 // - a rest of the output (search/anchors.h: where the new speech pauses) is coming and the stretch
-//   would not be still there: the change, at a stance frame of the rest_lead_s before the rest, goes
-//   to a stance from which the reference's legs stay still for as long as the rest;
+//   would not be still there: a change at a stance frame of the few seconds before the rest, to a
+//   stance from which the reference's legs stay still for as long as the rest, when that saves more
+//   stillness than the change itself costs;
 // - its capture run ends (a clip's end): the change goes to a stance with a long run ahead;
 // - nothing else: the speaker's own weight shifts play as captured, at the speaker's own rate.
 // Every change goes to the stance nearest the one it leaves (feet, hips' height and tilt in the
@@ -27,7 +28,6 @@
 namespace gmg {
 
 struct LowerBodyParams {
-  double rest_lead_s = 0.7;  // a change into a rest comes at most this long before the pause ((0, 5])
   int reuse_cap_plays = 3;   // a stretch played this often is not played again (0: no cap)
   double variety = 0.3;      // share of the reference's seconds a seed withholds as targets ([0, 0.9])
 };

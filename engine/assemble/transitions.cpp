@@ -94,9 +94,11 @@ struct Offsets {
 
   // A transition: the output was heading to `old_pose` moving at `old_vel` (source terms, before
   // the offsets); from now on the source is `dst` moving at `dst_vel`. The new offsets make the
-  // output's pose and velocity continuous.
+  // output's pose and velocity continuous. `feet_shift` (horizontal) moves the anchor further, the
+  // root's offset taking it back as it decays: the hips then shift over the transition while the
+  // feet stay where they were.
   void transition(const Pose& old_pose, const Velocity& old_vel, const Pose& dst, const Velocity& dst_vel,
-                  bool anchor_root) {
+                  bool anchor_root, const glm::dvec3& feet_shift) {
     for (std::size_t j = 0; j < rot.size(); ++j) {
       const glm::dquat out_old = expmap_to_quat(rot[j]) * old_pose.rot[j];
       rot[j] = quat_to_expmap(out_old * glm::conjugate(dst.rot[j]));
@@ -106,11 +108,32 @@ struct Offsets {
     }
     if (anchor_root && !pos.empty()) {
       // The horizontal jump of the root is not decayed quickly: it becomes the slow anchor.
-      anchor += glm::dvec3(pos[0].x, 0.0, pos[0].z);
-      pos[0].x = pos[0].z = 0.0;
+      anchor += glm::dvec3(pos[0].x, 0.0, pos[0].z) + feet_shift;
+      pos[0].x = -feet_shift.x;
+      pos[0].z = -feet_shift.z;
     }
   }
 };
+
+// The mean of `feet`'s positions relative to the root in `pose` (world axes), horizontal.
+glm::dvec3 feet_from_root(const Skeleton& s, const Pose& pose, const std::vector<int>& feet) {
+  glm::dvec3 sum(0.0);
+  for (int foot : feet) {
+    glm::dvec3 p(0.0);
+    glm::dquat r(1.0, 0.0, 0.0, 0.0);
+    for (int j : chain_to(s, foot)) {
+      if (j == 0) {
+        r = pose.rot[0];
+        continue;
+      }
+      p += r * pose.tr[static_cast<std::size_t>(j)];
+      r = r * pose.rot[static_cast<std::size_t>(j)];
+    }
+    sum += p;
+  }
+  sum /= static_cast<double>(feet.size());
+  return {sum.x, 0.0, sum.z};
+}
 
 // Where the old source would have gone one frame after `p` (its last played frame, whose pose
 // and velocity were `previous`, `previous_vel`): on along its own capture when it can, else on at
@@ -141,7 +164,8 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
 }
 
 Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
-                             const std::vector<PathPiece>& pieces, const BlendParams& params) {
+                             const std::vector<PathPiece>& pieces, const BlendParams& params,
+                             const std::vector<int>& anchor_feet) {
   if (!(params.halflife_s > 0.0)) throw Error("assemble: transition_halflife must be > 0");
   if (runs.frame_count() != source.frame_count) throw Error("assemble: the capture runs do not cover the source");
   if (!facts.known) throw Error("assemble: the source's capture facts are not known");
@@ -187,7 +211,11 @@ Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, cons
       if (c.run != clock[i - 1].run) {
         old_source_next(reader, clock[i - 1], previous, previous_vel, old_pose, old_vel);
         reader.velocity(c.time, c.rate, dst, dst_vel);
-        off.transition(old_pose, old_vel, dst, dst_vel, anchor_root);
+        const glm::dvec3 shift = anchor_root && !anchor_feet.empty()
+                                     ? feet_from_root(source.skeleton, old_pose, anchor_feet) -
+                                           feet_from_root(source.skeleton, dst, anchor_feet)
+                                     : glm::dvec3(0.0);
+        off.transition(old_pose, old_vel, dst, dst_vel, anchor_root, shift);
       }
     }
     for (int j = 0; j < joints; ++j) {

@@ -27,8 +27,13 @@ namespace gmg {
 // known), which a graph keeps, so that the source is read only at the frames the pieces play.
 // Returns exactly the pieces' total length in frames, in the source's skeleton and fps.
 // params.halflife_s > 0.
+// `anchor_feet` (joints, e.g. the two foot ends of engine/motion/body_layers.h): at a transition the
+// anchor keeps their horizontal mean where it was instead of the root, and the root's own offset
+// decays with the legs': the hips shift over the transition while planted feet stay (the lower body
+// of a layered reenactment, which changes stance only with both feet planted). Empty: the root.
 Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
-                             const std::vector<PathPiece>& pieces, const BlendParams& params);
+                             const std::vector<PathPiece>& pieces, const BlendParams& params,
+                             const std::vector<int>& anchor_feet = {});
 
 // The same for a source described by `continues[f]` (source frame f is naturally followed by
 // f + 1), its capture facts computed over every frame first.

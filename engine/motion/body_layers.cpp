@@ -118,6 +118,7 @@ BodyLayers find_body_layers(const Motion& m) {
     out.hip_branch = branch;
     out.legs[0] = leg_joints(s, children, branch, first);
     out.legs[1] = leg_joints(s, children, branch, second);
+    out.feet = {first, second};
     break;
   }
   if (out.hip_branch < 0) return BodyLayers{};
@@ -167,9 +168,17 @@ BodyLayers body_layers_from_names(const Motion& m, const std::vector<std::string
         break;
       }
   }
-  for (std::vector<int>& leg : out.legs)
+  const std::vector<glm::dvec3> pos = first_frame_positions(m);
+  out.feet.clear();
+  for (std::vector<int>& leg : out.legs) {
     leg.erase(std::remove_if(leg.begin(), leg.end(), [&](int j) { return !out.lower[static_cast<std::size_t>(j)]; }),
               leg.end());
+    if (leg.empty()) continue;
+    int lowest = leg.front();
+    for (int j : leg)
+      if (pos[static_cast<std::size_t>(j)].y < pos[static_cast<std::size_t>(lowest)].y) lowest = j;
+    out.feet.push_back(lowest);
+  }
   return out;
 }
 

@@ -23,6 +23,7 @@ struct BodyLayers {
   // legs). Empty when the skeleton has no two legs (an upper-body rig): then nothing is layered.
   std::vector<char> lower;
   std::vector<int> legs[2];  // each leg's joints, from the hip down to its foot end
+  std::vector<int> feet;     // each leg's foot end: its lowest joint in the first frame
   std::vector<int> spine;    // from the hip branch's upper child up to the chest, ascending
   int hip_branch = -1;       // where the legs part (SMPL-X pelvis, Mixamo Hips, GENEA b_root)
 

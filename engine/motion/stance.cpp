@@ -14,14 +14,6 @@ glm::dquat heading(const glm::dquat& q) {
   return n < 1e-12 ? glm::dquat(1.0, 0.0, 0.0, 0.0) : glm::dquat(q.w / n, 0.0, q.y / n, 0.0);
 }
 
-// The lowest joint of a leg in the first frame: its foot end.
-int foot_end(const std::vector<int>& leg, const std::vector<glm::dvec3>& first) {
-  int best = leg.back();
-  for (int j : leg)
-    if (first[static_cast<std::size_t>(j)].y < first[static_cast<std::size_t>(best)].y) best = j;
-  return best;
-}
-
 // World rotation and position of every joint of one frame.
 void world_pose(const Motion& m, int f, std::vector<glm::dquat>& rot, std::vector<glm::dvec3>& pos) {
   const int joints = m.joint_count();
@@ -50,7 +42,8 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
   std::vector<glm::dvec3> pos;
   world_pose(m, 0, rot, pos);
   const int hips = layers.hip_branch;
-  const int feet[2] = {foot_end(layers.legs[0], pos), foot_end(layers.legs[1], pos)};
+  if (layers.feet.size() != 2) return out;
+  const int feet[2] = {layers.feet[0], layers.feet[1]};
   out.leg_length = 0.5 * (glm::length(pos[static_cast<std::size_t>(feet[0])] - pos[static_cast<std::size_t>(hips)]) +
                           glm::length(pos[static_cast<std::size_t>(feet[1])] - pos[static_cast<std::size_t>(hips)]));
   if (!(out.leg_length > 0.0)) return out;

@@ -39,7 +39,6 @@ LowerBody plan_lower_body(const MotionGraph& g, const std::vector<Anchor>& rests
   const Stance stance = stance_facts(g.motion, runs, layers);
   if (!stance.known) return out;
   LowerBodyParams p;
-  p.rest_lead_s = config.search.rest_lead_s;
   p.reuse_cap_plays = config.search.reuse_cap_plays;
   p.variety = config.search.variety;
   out.plan = plan_lower_body(stance, runs, rests, total_frames, g.motion.fps, p, rng);
@@ -60,8 +59,8 @@ Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody&
     pieces.push_back(std::move(piece));
   }
   const CaptureRuns runs = graph_runs(g);
-  const Motion legs =
-      assemble_inertialized(g.motion, runs, g.capture.known ? g.capture : capture_facts(g.motion, runs), pieces, p);
+  const Motion legs = assemble_inertialized(g.motion, runs, g.capture.known ? g.capture : capture_facts(g.motion, runs),
+                                           pieces, p, lower.layers.feet);
   return join_layers(upper, legs, lower.layers, params.spine_follow);
 }
 
