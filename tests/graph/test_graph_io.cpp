@@ -20,6 +20,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "graph/build.h"
+#include "graph/graph_check.h"
 #include "graph/graph_io.h"
 #include "graph/key_poses.h"
 #include "graph/reference_facts.h"
