@@ -96,7 +96,14 @@ MotionGraph parse_graph(const ArchiveSource& src, const std::string& path, Motio
   // checked; the motion is checked by blocks (read_motion). A damaged file may fail a field's check
   // before its sum is known: then the part the checksum covers is summed, and a wrong checksum is
   // what is said.
-  ArchiveReader r(bytes + kGraphHeaderBytes, present, path, src);
+  // A file of an older version whose fields fail their checks may be a newer file whose version
+  // field is damaged: the error says which version it was read as.
+  const std::string note = version == kGraphFormatVersion ? std::string()
+                                                          : " (read as format version " + std::to_string(version) +
+                                                                ", which its header gives; this gmg reads versions " +
+                                                                std::to_string(kOldestGraphFormatRead) + " to " +
+                                                                std::to_string(kGraphFormatVersion) + ")";
+  ArchiveReader r(bytes + kGraphHeaderBytes, present, path, src, note);
   auto summed_to = [&](std::size_t at) {
     if (at != summed) r.fail("its checksum does not end where the motion starts");
     if (r.checksum() != sum) throw damaged();
