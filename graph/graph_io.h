@@ -1,4 +1,5 @@
-// Saving and loading built graphs (a versioned binary file with a checksum, "GMGRAPH" magic).
+// Saving and loading built graphs (a versioned binary file with a checksum, "GMGRAPH" magic; its
+// layout: docs/graph_format.md).
 #pragma once
 
 #include <cstddef>
@@ -9,16 +10,8 @@
 
 namespace gmg {
 
-// The graph file format this gmg writes and reads (graph_io.cpp): 3 added the reference speech
-// features, 4 aligned arrays read in place, 5 the SMPL-X body (shape, per-frame face), 6 the
-// reference facts (the assembly's capture facts and the beat end costs, graph/reference_facts.h),
-// 7 the XXH3 checksum (engine/core/checksum.h) and the motion last, with a checksum per block of
-// frames, 8 the key poses' sketch (graph/key_poses.h), 9 the key poses after the part the file's
-// checksum covers, with a checksum per key (checked when read: graph_check_key_poses), 10 the
-// edges' row starts and targets aligned, read in place. Files of formats 7 to 9 are still read (7
-// without a sketch: a reenactment from them gives the same motion, computing more junction costs;
-// 7 and 8 have their key poses checked by every load; up to 9 the row starts and targets are
-// copied).
+// The graph file format this gmg writes, and the oldest it reads; docs/graph_format.md describes
+// the layout and what each version changed.
 constexpr std::uint32_t kGraphFormatVersion = 10;
 constexpr std::uint32_t kOldestGraphFormatRead = 7;
 
@@ -41,23 +34,10 @@ enum class MotionCheck {
 // naming it. A file with a valid checksum is still checked field by field (it may have been
 // made by hand): counts within engine/core/limits.h (joints, depth, frames, fps 1 to 1000),
 // finite unit rotations, clips that cover the frames exactly, valid nodes and edges. With
-// MotionCheck::OnUse the motion's checksums and values are checked by graph_check_frames (and
-// all of it by the load when the graph lacks the key poses or the capture facts, which are then
-// computed from every frame).
+// MotionCheck::OnUse the motion's checksums and values are checked by graph_check_frames
+// (graph/graph_check.h; all of it by the load when the graph lacks the key poses or the capture
+// facts, which are then computed from every frame).
 MotionGraph graph_load(const std::string& path, MotionCheck motion = MotionCheck::OnLoad);
-
-// Checks frames first .. last (clamped to the graph) of a graph loaded with MotionCheck::OnUse,
-// the blocks not checked before; nothing for any other graph. Throws gmg::Error naming the file
-// when a block's checksum is wrong ("damaged") or a frame holds a value that is not finite or not
-// a unit rotation. Safe to call from several threads.
-void graph_check_frames(const MotionGraph& g, int first, int last);
-
-// Checks the junction poses of key nodes first .. last (indices into the graph's key frames,
-// clamped to them) of a graph loaded with MotionCheck::OnUse from a file of format 9, those not
-// checked before; nothing for any other graph. Throws gmg::Error naming the file when a key's
-// checksum is wrong ("damaged") or its pose holds a value that is not finite. Safe to call from
-// several threads.
-void graph_check_key_poses(const MotionGraph& g, std::size_t first, std::size_t last);
 
 // graph_load (MotionCheck::OnLoad) of a file's bytes already in memory; `path` labels errors.
 MotionGraph graph_parse(const std::string& bytes, const std::string& path);

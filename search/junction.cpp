@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "graph/graph_io.h"
+#include "graph/graph_check.h"
 #include "graph/key_poses.h"
 #include "graph/reference_facts.h"
 

@@ -31,7 +31,7 @@ class JunctionCost {
   // over the key poses where they lie in the graph, a run of consecutive keys at a time, without
   // copying them. Each value is the one `costs` gives for that key. Needs the graph's key poses
   // (has_key_poses); those of a graph served from its file are checked as they are first read
-  // (graph_io.h graph_check_key_poses: a damaged one throws gmg::Error naming the file).
+  // (graph/graph_check.h graph_check_key_poses: a damaged one throws gmg::Error naming the file).
   void key_costs(int c, const std::vector<std::size_t>& keys, std::vector<double>& out);
   bool has_key_poses() const { return !keys_.empty(); }
 

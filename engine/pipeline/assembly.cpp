@@ -5,7 +5,7 @@
 #include "engine/assemble/transitions.h"
 #include "engine/motion/capture_facts.h"
 #include "engine/motion/npz.h"
-#include "graph/graph_io.h"
+#include "graph/graph_check.h"
 #include "graph/reference_facts.h"
 
 namespace gmg {
@@ -31,7 +31,7 @@ std::vector<PathPiece> plan_pieces(const Plan& plan) {
 }
 
 // Checks the frames the assembly reads, for a graph whose motion is checked when used
-// (graph/graph_io.h graph_check_frames; nothing for others): each stretch of consecutive frames
+// (graph/graph_check.h graph_check_frames; nothing for others): each stretch of consecutive frames
 // of each piece, and kMargin frames either side of it (the assembly samples between a frame and
 // its successor, and a transition continues the old source a step at its warp rate past its last
 // frame). Blocks of 64 frames make the margin cost little.

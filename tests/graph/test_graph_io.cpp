@@ -20,6 +20,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "graph/build.h"
+#include "graph/graph_check.h"
 #include "graph/graph_io.h"
 #include "graph/key_poses.h"
 #include "graph/reference_facts.h"
@@ -414,6 +415,35 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
                               ", this gmg reads versions 7 to 10: rebuild it with 'gmg build'");
   }
+}
+
+// A format 10 file whose version field says 9 (a version this gmg reads) fails a field's check as
+// format 9 reads it; the error says which version it read the file as and which versions it reads,
+// so a damaged version field is not taken for damage elsewhere. A format 10 file's error has no
+// such note.
+TEST(GraphIo, AnOlderVersionFieldIsNamedWhenTheFileDoesNotReadAsThatVersion) {
+  gmg::testing::TempDir dir;
+  const std::string path = dir.file("g.gmg");
+  graph_save(path, two_clip_graph());
+  std::string bytes = read_file_bytes(path);
+  ASSERT_EQ(bytes[8], 10);
+  bytes[8] = 9;
+  gmg::testing::write_text(path, bytes);
+  const std::string error = gmg::testing::error_of([&] { graph_load(path); });
+  EXPECT_EQ(error.rfind(path + ": byte ", 0), 0u) << error;
+  EXPECT_NE(error.find(": damaged graph file: "), std::string::npos) << error;
+  const std::string note = " (read as format version 9, which its header gives; this gmg reads versions 7 to 10)";
+  ASSERT_GE(error.size(), note.size());
+  EXPECT_EQ(error.substr(error.size() - note.size()), note) << error;
+
+  // The same damage read as format 10: a field's check fails without the note.
+  bytes[8] = 10;
+  const std::size_t flags = bytes.size() / 2;  // in the padding before the key poses
+  bytes[flags] = static_cast<char>(bytes[flags] ^ 0x40);
+  gmg::testing::write_text(path, bytes);
+  const std::string current = gmg::testing::error_of([&] { graph_load(path); });
+  EXPECT_NE(current.find("damaged"), std::string::npos) << current;
+  EXPECT_EQ(current.find("read as format version"), std::string::npos) << current;
 }
 
 TEST(GraphIo, ExportsDotAndGraphml) {
