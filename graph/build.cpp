@@ -116,6 +116,7 @@ void GraphBuild::add(ClipEvents c) {
   if (c.motion.frame_count < 2) throw Error(c.name + ": a reference clip needs at least 2 frames");
   if (s.g.clips.empty()) {
     s.first_name = c.name;
+    s.g.up = c.up;
     s.g.motion = motion_rest(c.motion.skeleton, c.motion.fps, 0);
     s.g.speech_dims = c.speech_dims;
     const int dims = 3 * c.motion.joint_count();
@@ -125,6 +126,9 @@ void GraphBuild::add(ClipEvents c) {
     s.key_poses = std::make_unique<SpillFile>(s.spill_folder, s.memory_limit);
   } else {
     s.check(c);
+    if (c.up != s.g.up)
+      throw Error(c.name + ": is " + enum_name(kUpAxisNames, c.up) + "-up but " + s.first_name + " is " +
+                  enum_name(kUpAxisNames, s.g.up) + "-up (one graph needs one up axis: give --set up=y or up=z)");
   }
   if (c.speech_dims != s.g.speech_dims)
     throw Error(c.name + ": has " + std::to_string(c.speech_dims) + " speech features per frame, " + s.first_name +

@@ -32,6 +32,7 @@ void write_payload(ArchiveWriter& w, const MotionGraph& g, std::uint32_t version
     w.aligned(g.key_poses);
   if (version >= 8) write_key_sketch(w, g.key_sketch);
   write_reference_facts(w, g);
+  if (version >= 11) write_layers(w, g);
   write_body(w, g.body);
   write_motion(w, g.motion, version >= 9 ? &g.key_poses : nullptr);
 }
@@ -55,6 +56,7 @@ MotionGraph read_payload(ArchiveReader& r, const ArchiveSource& src, const std::
     read_key_poses(r, src, g);
   if (version >= 8) read_key_sketch(r, src, g, version >= 9 ? tail.values > 0 : !g.key_poses.empty());
   read_reference_facts(r, src, g);
+  if (version >= 11) read_layers(r, src, g);
   read_body(r, g);
   read_motion(r, g, path, mode, summed_to, damaged, version >= 9 ? &tail : nullptr);
   if (!r.done()) r.fail("trailing bytes after the motion");

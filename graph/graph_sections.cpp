@@ -405,4 +405,58 @@ void read_body(ArchiveReader& r, MotionGraph& g) {
   b.model = r.str();
 }
 
+void write_layers(ArchiveWriter& w, const MotionGraph& g) {
+  w.pod<std::uint8_t>(static_cast<std::uint8_t>(g.up));
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(g.lower_joints.size()));
+  for (const std::string& name : g.lower_joints) w.str(name);
+  const Stance& st = g.stance;
+  w.pod<std::uint8_t>(st.known ? 1 : 0);
+  w.pod(st.leg_length);
+  w.pod(st.still_speed);
+  w.aligned(st.pose);
+  w.aligned(st.place);
+  w.aligned(st.speed);
+  w.aligned(st.planted);
+}
+
+void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g) {
+  const std::uint8_t up = r.pod<std::uint8_t>();
+  if (up > static_cast<std::uint8_t>(UpAxis::Z)) r.fail("unknown up axis");
+  g.up = static_cast<UpAxis>(up);
+  const std::uint32_t names = r.pod<std::uint32_t>();
+  if (names > static_cast<std::uint32_t>(g.motion.joint_count())) r.fail("more lower joints than joints");
+  for (std::uint32_t i = 0; i < names; ++i) {
+    g.lower_joints.push_back(r.str());
+    if (g.motion.skeleton.find(g.lower_joints.back()) < 0) r.fail("a lower joint is not a joint of its skeleton");
+  }
+  Stance& st = g.stance;
+  const std::uint8_t known = r.pod<std::uint8_t>();
+  if (known > 1) r.fail("the stance is neither known nor unknown");
+  st.known = known == 1;
+  st.leg_length = r.pod<double>();
+  st.still_speed = r.pod<float>();
+  if (st.known && !(std::isfinite(st.leg_length) && st.leg_length > 0.0 && std::isfinite(st.still_speed) &&
+                    st.still_speed >= 0.0f))
+    r.fail("the stance's leg length or still speed is not a positive finite number");
+  const std::size_t frames = st.known ? static_cast<std::size_t>(g.frame_count()) : 0;
+  bool valid = true;
+  // Each list's count, then its values, in the order written.
+  auto floats = [&](std::size_t expected) {
+    const auto [p, n] = r.aligned<float>();
+    if (n != expected) r.fail("the stance disagrees with the frame count");
+    r.in_place<float>(n, [&](const float* q, std::size_t, std::size_t m) { valid = valid && count_finite(q, m) == m; });
+    return Samples<float>::view(p, n, src.owner);
+  };
+  st.pose = floats(frames * kStanceDims);
+  st.place = floats(frames * 2);
+  st.speed = floats(frames);
+  const auto [planted, planted_n] = r.aligned<std::uint8_t>();
+  if (planted_n != frames) r.fail("the stance disagrees with the frame count");
+  r.in_place<std::uint8_t>(planted_n, [&](const std::uint8_t* q, std::size_t, std::size_t m) {
+    for (std::size_t i = 0; i < m; ++i) valid = valid && q[i] <= 1;
+  });
+  if (!valid) r.fail("a stance value is not finite or a stance flag is not 0 or 1");
+  st.planted = Samples<std::uint8_t>::view(planted, planted_n, src.owner);
+}
+
 }  // namespace gmg

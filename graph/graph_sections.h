@@ -70,4 +70,10 @@ void read_reference_facts(ArchiveReader& r, const ArchiveSource& src, MotionGrap
 void write_body(ArchiveWriter& w, const SmplxBody& b);
 void read_body(ArchiveReader& r, MotionGraph& g);
 
+// The body's layers (format 11 on): the reference's up axis, the lower joints named at build, and
+// the stance of every frame (engine/motion/stance.h), read in place. Older formats have none: Y-up,
+// layers from the skeleton, the stance unknown.
+void write_layers(ArchiveWriter& w, const MotionGraph& g);
+void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g);
+
 }  // namespace gmg

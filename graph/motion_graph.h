@@ -29,6 +29,8 @@
 
 #include "engine/core/files.h"
 #include "engine/motion/capture_facts.h"
+#include "engine/motion/stance.h"
+#include "engine/motion/up_axis.h"
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
@@ -189,6 +191,15 @@ struct MotionGraph {
   bool indexed = false;            // keys, breaks and transition_weight are those of the nodes and edges
   CaptureFacts capture;
   Samples<float> beat_cost;
+  // The reference's up axis: its motion here is in Y-up (engine/motion/up_axis.h), and every output
+  // is turned back into this axis. Y for graphs of format 10 and older.
+  UpAxis up = UpAxis::Y;
+  // The lower layer's joints named at build (GraphParams::lower_joints; empty: found from the
+  // skeleton, engine/motion/body_layers.h), and the reference's stance under every frame for the
+  // lower body's planner (engine/motion/stance.h); unknown without two legs or in graphs of format 10
+  // and older (then computed where it is used).
+  std::vector<std::string> lower_joints;
+  Stance stance;
   // The file a loaded graph is served from; null for a graph built in memory.
   std::shared_ptr<const MappedFile> source;
   // Set for a graph loaded with MotionCheck::OnUse: the motion blocks not yet checked. Null when
@@ -226,6 +237,8 @@ struct ClipEvents {
   Motion motion;
   std::vector<int> onset_frames;                            // clip-local frames
   std::vector<std::pair<int, std::string>> keyword_frames;  // clip-local frame, keyword
+  // The up axis the clip was captured in; its motion is already turned into Y-up.
+  UpAxis up = UpAxis::Y;
   // The clip's speech features, motion.frame_count x speech_dims (audio/speech_features.h), or
   // empty (speech_dims 0). Every clip of a graph has them, or none does.
   std::vector<float> speech{};

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/core/enum_names.h"
+#include "engine/motion/up_axis.h"
 
 namespace gmg {
 
@@ -56,6 +58,12 @@ struct GraphParams {
   // first); 0 = until exact. Under Auto this is the budget up to kAnnChecksFrames frames, and it
   // grows beyond them (kAnnChecksGrowth, below).
   int ann_checks = 2000;
+  // The reference's up axis (engine/motion/up_axis.h): detected (auto) or given; clips are turned
+  // into Y-up before anything is computed from them, and outputs back.
+  UpChoice up = UpChoice::Auto;
+  // The joints the lower body's path drives (engine/motion/body_layers.h); empty: found from the
+  // skeleton's geometry (the root, the chain to where the legs part, the legs).
+  std::vector<std::string> lower_joints;
 };
 
 // Auto's budget beyond an hour at 30 fps: ann_checks * (1 + kAnnChecksGrowth * log2(frames /

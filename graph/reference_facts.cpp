@@ -44,6 +44,12 @@ void add_reference_facts(MotionGraph& g) {
   g.beat_cost = g.activity.size() == static_cast<std::size_t>(g.frame_count())
                     ? Samples<float>(beat_end_costs(g.activity, runs, g.motion.fps))
                     : Samples<float>();
+  g.lower_joints = g.params.lower_joints;
+  g.stance = stance_facts(g.motion, runs, graph_body_layers(g));
+}
+
+BodyLayers graph_body_layers(const MotionGraph& g) {
+  return g.lower_joints.empty() ? find_body_layers(g.motion) : body_layers_from_names(g.motion, g.lower_joints);
 }
 
 }  // namespace gmg

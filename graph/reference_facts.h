@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "engine/motion/body_layers.h"
 #include "engine/motion/capture_runs.h"
 #include "graph/motion_graph.h"
 
@@ -19,6 +20,10 @@ void add_reference_facts(MotionGraph& g);
 // The key and break frames and the transition weight (MotionGraph::keys, breaks,
 // transition_weight; indexed) from the nodes and edges.
 void index_graph(MotionGraph& g);
+
+// The layers of g's body (engine/motion/body_layers.h): named by g.lower_joints, else found from
+// its skeleton.
+BodyLayers graph_body_layers(const MotionGraph& g);
 
 // The mean weight of the unnatural edges, summed in edge order; 0 without any.
 double mean_transition_weight(const MotionGraph& g);

@@ -12,6 +12,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "graph/graph_io.h"
+#include "graph/reference_facts.h"
 #include "graph/stats.h"
 
 namespace gmg {
@@ -51,6 +52,13 @@ struct Count {
   nlohmann::ordered_json value;
 };
 
+// Frames where the lower body may change stance (both feet planted, hips slow); 0 without a stance.
+long stance_frames(const MotionGraph& g) {
+  long n = 0;
+  for (std::size_t f = 0; f < g.stance.planted.size(); ++f) n += g.stance.planted[f];
+  return n;
+}
+
 std::vector<Count> counts(const MotionGraph& g) {
   const GraphStats s = graph_stats(g);
   return {{"frames", "frames", s.frames},
@@ -66,7 +74,10 @@ std::vector<Count> counts(const MotionGraph& g) {
           {"mean_out_degree", "mean out-degree", s.mean_out_degree},
           {"share_with_transition", "frames with a transition", s.share_with_transition},
           {"shortest_subsequence", "shortest subsequence", s.shortest_subsequence},
-          {"longest_subsequence", "longest subsequence", s.longest_subsequence}};
+          {"longest_subsequence", "longest subsequence", s.longest_subsequence},
+          {"up_axis", "up axis", enum_name(kUpAxisNames, g.up)},
+          {"stance_frames", "stance frames", stance_frames(g)},
+          {"layers", "layers", describe_body_layers(g.motion.skeleton, graph_body_layers(g))}};
 }
 
 void run_inspect(const InspectArgs& a) {

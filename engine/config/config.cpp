@@ -259,6 +259,17 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
                  "layered body: share of the pelvis difference the spine takes up so the chest keeps the gesture's "
                  "posture (1) or rides on the lower body's pelvis (0)",
                  &Config::blend, &BlendParams::spine_follow),
+      enum_key("up", "the reference's up axis: auto (the axis along which the body is tallest), y or z (gmg build)",
+               &Config::graph, &GraphParams::up, kUpChoiceNames),
+      {{"lower_joints",
+        "joints the lower body's own path drives, comma separated (gmg build; empty: the root, the chain to where the "
+        "legs part and the legs, found from the skeleton)"},
+       [](Config& c, const std::string& v) { c.graph.lower_joints = split_trimmed(v, ','); },
+       [](const Config& c) {
+         std::string s;
+         for (const std::string& j : c.graph.lower_joints) s += (s.empty() ? "" : ",") + j;
+         return s;
+       }},
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
        [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_trimmed(v, ','); },
        [](const Config& c) {

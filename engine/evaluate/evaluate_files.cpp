@@ -13,6 +13,7 @@
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/up_axis.h"
 #include "engine/pipeline/report_facts.h"
 #include "graph/graph_io.h"
 
@@ -26,7 +27,7 @@ std::vector<Motion> read_reference_clips(const std::string& path, const std::str
       clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
     g.check_unchanged();
   } else {
-    clips.push_back(motion_read(path, skeleton));
+    clips.push_back(motion_read_y_up(path, skeleton));
   }
   return clips;
 }
@@ -57,10 +58,12 @@ audio::Audio read_evaluated_speech(const std::string& path, bool allow_silence, 
 
 EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& options) {
   EvaluateLoaded l;
-  l.generated = motion_read(in.generated, in.skeleton);
+  // Every motion in Y-up, whatever its file's up axis, so feet, floors and heights are measured alike
+  // (a graph's motion is Y-up already).
+  l.generated = motion_read_y_up(in.generated, in.skeleton);
   l.generated_name = in.generated;
   if (!in.truth.empty()) {
-    l.truth = motion_read(in.truth, in.skeleton);
+    l.truth = motion_read_y_up(in.truth, in.skeleton);
     l.truth_name = in.truth;
   }
   if (!in.audio.empty()) {

@@ -10,6 +10,7 @@
 #include "engine/motion/body_layers.h"
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
+#include "engine/motion/samples.h"
 
 namespace gmg {
 
@@ -27,10 +28,11 @@ constexpr int kStanceDims = 9;
 struct Stance {
   bool known = false;      // false: the skeleton has no two legs (nothing is layered)
   double leg_length = 0.0; // hip branch to foot end in the first frame, file units
-  std::vector<float> pose;          // frames x kStanceDims
-  std::vector<float> place;         // frames x 2: the hips' horizontal position (x, z), leg lengths
-  std::vector<float> speed;         // per frame: the largest speed of a leg joint relative to the hips, leg lengths/s
-  std::vector<std::uint8_t> planted;  // per frame: 1 for a stance frame
+  // Owned, or read in place from a graph file (engine/motion/samples.h).
+  Samples<float> pose;                // frames x kStanceDims
+  Samples<float> place;               // frames x 2: the hips' horizontal position (x, z), leg lengths
+  Samples<float> speed;               // per frame: the largest speed of a leg joint relative to the hips, leg lengths/s
+  Samples<std::uint8_t> planted;      // per frame: 1 for a stance frame
   // The lower body is still at a frame when `speed` is below this, the reference's 35th percentile:
   // where the whole body is still (its largest joint speed below its own 5th percentile: BEAT2 17
   // cm/s, ZEGGS 8 cm/s) the legs move at their 35th-40th percentile.

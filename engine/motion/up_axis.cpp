@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/motion/motion_file.h"
+
 namespace gmg {
 namespace {
 
@@ -72,6 +74,12 @@ UpAxis resolve_up_axis(const Motion& m, UpChoice choice) {
       break;
   }
   return detect_up_axis(m);
+}
+
+Motion motion_read_y_up(const std::string& path, const std::string& skeleton) {
+  Motion m = motion_read(path, skeleton);
+  motion_to_y_up(m, detect_up_axis(m));
+  return m;
 }
 
 void motion_to_y_up(Motion& m, UpAxis from) {

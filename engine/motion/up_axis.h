@@ -41,6 +41,10 @@ void motion_to_y_up(Motion& m, UpAxis from);
 // The inverse: turns a Y-up motion into `to`, in place.
 void motion_from_y_up(Motion& m, UpAxis to);
 
+// A motion file read (engine/motion/motion_file.h motion_read) and turned into Y-up from its
+// detected up axis: for what measures or draws a motion on its own (evaluate, render).
+Motion motion_read_y_up(const std::string& path, const std::string& skeleton = "");
+
 // A point or direction between the frames.
 glm::dvec3 to_y_up(const glm::dvec3& v, UpAxis from);
 glm::dvec3 from_y_up(const glm::dvec3& v, UpAxis to);

@@ -13,6 +13,7 @@
 #include "engine/core/files.h"
 #include "engine/core/parallel.h"
 #include "engine/motion/cleanup.h"
+#include "engine/motion/up_axis.h"
 #include "engine/motion/motion_file.h"
 
 namespace gmg {
@@ -36,6 +37,8 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
   ClipEvents in;
   in.name = name;
   in.motion = std::move(motion);
+  in.up = resolve_up_axis(in.motion, config.graph.up);
+  motion_to_y_up(in.motion, in.up);
   motion_lock_and_smooth(in.motion, config.cleanup.lock_joints, config.cleanup.smooth_window,
                          config.cleanup.smooth_order, name);
   const SpeechEvents ev = speech_events_on_grid(times, in.motion.fps, in.motion.frame_count, lexicon);

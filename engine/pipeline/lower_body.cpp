@@ -33,10 +33,12 @@ LowerBody plan_lower_body(const MotionGraph& g, const std::vector<Anchor>& rests
                           const Config& config, std::mt19937_64& rng) {
   LowerBody out;
   if (!config.search.layers || config.search.planner != PlannerMode::Natural) return out;
-  BodyLayers layers = find_body_layers(g.motion);
+  BodyLayers layers = graph_body_layers(g);
   if (!layers.layered()) return out;
   const CaptureRuns runs = graph_runs(g);
-  const Stance stance = stance_facts(g.motion, runs, layers);
+  // A graph of format 10 or older has no stance: it is computed from every frame here.
+  const Stance computed = g.stance.known ? Stance{} : stance_facts(g.motion, runs, layers);
+  const Stance& stance = g.stance.known ? g.stance : computed;
   if (!stance.known) return out;
   LowerBodyParams p;
   p.reuse_cap_plays = config.search.reuse_cap_plays;

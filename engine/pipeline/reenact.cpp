@@ -41,6 +41,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   const LowerBody lower = plan_lower_body(g, rests, events.total_frames, config, rng);
   r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, assembly_params(config))
                                     : assemble_motion(g, r.plan, assembly_params(config));
+  motion_from_y_up(r.motion, g.up);  // the output in the reference's own up axis
   r.body = assemble_body(g, r.plan, assembly_params(config));
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 

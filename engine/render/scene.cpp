@@ -10,6 +10,7 @@
 #include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/up_axis.h"
 #include "engine/pipeline/report_facts.h"
 
 namespace gmg::render {
@@ -19,7 +20,7 @@ constexpr glm::dvec3 kMainColor{0.30, 0.50, 0.82}, kCompareColor{0.90, 0.55, 0.2
 constexpr glm::dvec3 kSkyTop{0.93, 0.94, 0.96}, kSkyBottom{0.80, 0.83, 0.87};
 
 Figure load_figure(const std::string& path, const std::string& skeleton) {
-  const Motion m = motion_read(path, skeleton);
+  const Motion m = motion_read_y_up(path, skeleton);  // drawn standing, whatever the file's up axis
   if (m.frame_count == 0) throw Error(path + ": the motion has no frames to render");
   return figure_from_motion(m);
 }
