@@ -417,6 +417,7 @@ void write_layers(ArchiveWriter& w, const MotionGraph& g) {
   w.aligned(st.place);
   w.aligned(st.speed);
   w.aligned(st.planted);
+  w.aligned(g.spikes);
 }
 
 void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g) {
@@ -457,6 +458,14 @@ void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g) {
   });
   if (!valid) r.fail("a stance value is not finite or a stance flag is not 0 or 1");
   st.planted = Samples<std::uint8_t>::view(planted, planted_n, src.owner);
+  const auto [spikes, spikes_n] = r.aligned<std::uint8_t>();
+  if (spikes_n != 0 && spikes_n != static_cast<std::size_t>(g.frame_count()))
+    r.fail("the jerk spikes disagree with the frame count");
+  r.in_place<std::uint8_t>(spikes_n, [&](const std::uint8_t* q, std::size_t, std::size_t m) {
+    for (std::size_t i = 0; i < m; ++i) valid = valid && q[i] <= 1;
+  });
+  if (!valid) r.fail("a jerk spike flag is not 0 or 1");
+  g.spikes = Samples<std::uint8_t>::view(spikes, spikes_n, src.owner);
 }
 
 }  // namespace gmg

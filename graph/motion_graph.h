@@ -200,6 +200,9 @@ struct MotionGraph {
   // and older (then computed where it is used).
   std::vector<std::string> lower_joints;
   Stance stance;
+  // Per frame, 1 where the upper body's jerk spikes (engine/motion/spikes.h); empty in graphs of
+  // format 10 and older (then nothing is rationed).
+  Samples<std::uint8_t> spikes;
   // The file a loaded graph is served from; null for a graph built in memory.
   std::shared_ptr<const MappedFile> source;
   // Set for a graph loaded with MotionCheck::OnUse: the motion blocks not yet checked. Null when

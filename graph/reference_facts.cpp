@@ -1,5 +1,7 @@
 #include "graph/reference_facts.h"
 
+#include "engine/motion/body_parts.h"
+#include "engine/motion/spikes.h"
 #include "graph/beats.h"
 
 namespace gmg {
@@ -46,6 +48,7 @@ void add_reference_facts(MotionGraph& g) {
                     : Samples<float>();
   g.lower_joints = g.params.lower_joints;
   g.stance = stance_facts(g.motion, runs, graph_body_layers(g));
+  g.spikes = jerk_spikes(g.motion, runs, upper_body_joints(g.motion.skeleton));
 }
 
 BodyLayers graph_body_layers(const MotionGraph& g) {

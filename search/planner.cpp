@@ -55,7 +55,8 @@ class Planner {
         // The preference is drawn before the ranker's sample seed: the order of the generator's draws.
         preference_(natural_ && params.variety > 0.0 ? SeedPreference(g, params.variety, rng) : SeedPreference()),
         ranker_(g, subs, params, natural_, index_, junction_, speech_, reuse_, preference_, rng),
-        rests_(g) {}
+        rests_(g),
+        spike_budget_(spike_budget(g, total_frames(subs))) {}
 
   Plan run() {
     Plan plan;
@@ -68,6 +69,7 @@ class Planner {
         seg.speech_cost = speech_.path_cost(seg.path, seg.sub.start, seg.sub.length);
         reuse_.play(seg.path, seg.sub.start);
       }
+      spikes_used_ += spike_frames(seg.path);
       previous_clean = seg.accepted && seg.fallback == Fallback::None;
       previous_path = seg.path;
       plan.segments.push_back(std::move(seg));
@@ -195,13 +197,38 @@ class Planner {
   }
 
   // Candidates that replay a frame past its cap (or jump back into what was just played) are no
-  // candidates: the fallbacks look further, and the last one plays the capture on.
+  // candidates: the fallbacks look further, and the last one plays the capture on. Nor are, while
+  // others remain, those that would play more of the capture's jerk spikes than the output's share
+  // of them (engine/motion/spikes.h): a spike is played no more often than the speaker made it.
   void drop_capped(std::vector<BeamCandidate>& candidates) const {
-    if (!natural_ || params_.reuse_weight <= 0.0) return;
-    const double capped = params_.reuse_weight * ReuseTracker::kCapCost;
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                    [&](const BeamCandidate& c) { return c.cost >= capped; }),
-                     candidates.end());
+    if (!natural_) return;
+    if (params_.reuse_weight > 0.0) {
+      const double capped = params_.reuse_weight * ReuseTracker::kCapCost;
+      candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                      [&](const BeamCandidate& c) { return c.cost >= capped; }),
+                       candidates.end());
+    }
+    const long left = spike_budget_ - spikes_used_;
+    std::vector<BeamCandidate> within;
+    for (const BeamCandidate& c : candidates)
+      if (spike_frames(c.path) <= std::max(0L, left)) within.push_back(c);
+    if (!within.empty()) candidates.swap(within);
+  }
+
+  long spike_frames(const std::vector<int>& path) const {
+    if (g_.spikes.empty()) return 0;
+    long n = 0;
+    for (int f : path) n += g_.spikes[static_cast<std::size_t>(f)];
+    return n;
+  }
+
+  // The output's share of the capture's spikes: as many spiking frames per output frame as the
+  // capture has per frame, rounded up.
+  static long spike_budget(const MotionGraph& g, int output_frames) {
+    if (g.spikes.empty() || g.frame_count() == 0) return 0;
+    long n = 0;
+    for (std::size_t f = 0; f < g.spikes.size(); ++f) n += g.spikes[f];
+    return (n * output_frames + g.frame_count() - 1) / g.frame_count();
   }
 
   // A fallback's searches (each one counts as a retry); on success records it in seg.
@@ -389,6 +416,7 @@ class Planner {
   SeedPreference preference_;
   StartNodeRanker ranker_;
   RestFinder rests_;
+  long spike_budget_ = 0, spikes_used_ = 0;
   int reference_ = -1;        // the current subsequence's junction reference frame
   int continuing_from_ = -1;  // the natural successor of the previous path, or -1
 };

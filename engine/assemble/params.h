@@ -56,6 +56,12 @@ struct BlendParams {
   // lower and the upper layer the spine takes up. 1: the chest keeps the upper layer's own posture
   // (the captured spine's answer to its own pelvis); 0: it rides rigidly on the lower pelvis.
   double spine_follow = 1.0;
+  // Inertialize, natural planner: where the upper body plays on through an onset of the new speech,
+  // the reference's nearest kinematic beat within beat_shift frames is moved onto it, the playback
+  // speed staying within [1 / beat_rate, beat_rate] of the piece's (engine/assemble/timeline.h
+  // BeatAlignment). 0: off.
+  int beat_shift = 4;
+  double beat_rate = 1.33;
 
   // Offset and Crossfade only: frames on each side of a junction. Retries restart the search at other key nodes, so
   // some junctions join distant poses: on BEAT2 (2_scott_0_2_2 from 0_1_1) 8 frames (0.27 s at 30 fps) halves the

@@ -46,8 +46,52 @@ void smooth_run(std::vector<SourceClock>& clock, const std::vector<int>& knots) 
   clock[static_cast<std::size_t>(knots.back())].rate = d[n - 1];
 }
 
+// The source frame of `beats` nearest t within max_shift, or -1.
+int nearest_beat(const BeatAlignment& align, double t) {
+  const auto b = std::lower_bound(align.beats.begin(), align.beats.end(), static_cast<int>(std::floor(t)));
+  int beat = -1;
+  double best = align.max_shift + 0.5;
+  for (auto it : {b, b == align.beats.begin() ? b : b - 1})
+    if (it != align.beats.end() && std::abs(*it - t) < best) {
+      best = std::abs(*it - t);
+      beat = *it;
+    }
+  return beat;
+}
+
+// Whether the speeds from knot (kp, tp) to (o, t) and on to (kn, tn) stay within max_rate of `rate`.
+bool within_rate(const BeatAlignment& align, int kp, double tp, int o, double t, int kn, double tn, double rate) {
+  const double in = (t - tp) / (o - kp) / rate, out = (tn - t) / (kn - o) / rate;
+  return in >= 1.0 / align.max_rate && in <= align.max_rate && out >= 1.0 / align.max_rate && out <= align.max_rate;
+}
+
+// Beats onto the onsets inside one run (BeatAlignment): an onset on an inner knot (a piece's first
+// frame, which the plan put on a key frame of the new speech) moves that knot's source time to the
+// nearest beat; an onset between knots becomes a knot there. `knots` (sorted, the run's own, its
+// ends first and last) gains the new ones; their times are set in `clock`.
+void add_beat_knots(std::vector<SourceClock>& clock, std::vector<int>& knots, const BeatAlignment& align) {
+  const int first = knots.front(), last = knots.back();
+  for (auto o_it = std::lower_bound(align.onsets.begin(), align.onsets.end(), first + 1);
+       o_it != align.onsets.end() && *o_it < last; ++o_it) {
+    const int o = *o_it;
+    auto at = std::lower_bound(knots.begin(), knots.end(), o);
+    const bool on_knot = *at == o;
+    const int kp = *(at - 1), kn = on_knot ? *(at + 1) : *at;
+    if (!on_knot && (o - kp < 3 || kn - o < 3)) continue;  // a key frame is next to it already
+    SourceClock& c = clock[static_cast<std::size_t>(o)];
+    if (!(c.rate > 0.0)) continue;
+    const int beat = nearest_beat(align, c.time);
+    if (beat < 0 || beat == c.time) continue;
+    if (!within_rate(align, kp, clock[static_cast<std::size_t>(kp)].time, o, beat, kn,
+                     clock[static_cast<std::size_t>(kn)].time, c.rate))
+      continue;
+    c.time = beat;
+    if (!on_knot) knots.insert(at, o);
+  }
+}
+
 // Every run that spans several pieces: its knots are the pieces' first frames and its last frame.
-void smooth_rates(std::vector<SourceClock>& clock, const std::vector<int>& piece_starts) {
+void smooth_rates(std::vector<SourceClock>& clock, const std::vector<int>& piece_starts, const BeatAlignment* beats) {
   std::vector<char> starts(clock.size(), 0);
   for (int i : piece_starts) starts[static_cast<std::size_t>(i)] = 1;
   for (std::size_t first = 0; first < clock.size();) {
@@ -61,6 +105,7 @@ void smooth_rates(std::vector<SourceClock>& clock, const std::vector<int>& piece
     for (std::size_t i = first + 1; i <= last; ++i)
       if (starts[i]) knots.push_back(static_cast<int>(i));
     if (knots.back() != static_cast<int>(last)) knots.push_back(static_cast<int>(last));
+    if (!held && beats && knots.size() >= 2) add_beat_knots(clock, knots, *beats);
     if (!held) smooth_run(clock, knots);
     first = last + 1;
   }
@@ -72,7 +117,8 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
   return source_timeline(pieces, CaptureRuns(continues));
 }
 
-std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs) {
+std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs,
+                                         const BeatAlignment* beats) {
   const int frames = runs.frame_count();
   std::vector<SourceClock> out;
   int run = -1;
@@ -113,7 +159,7 @@ std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, c
     }
     previous_frame = p.back();
   }
-  smooth_rates(out, piece_starts);
+  smooth_rates(out, piece_starts, beats);
   return out;
 }
 

@@ -27,8 +27,22 @@ struct SourceClock {
   int run = 0;        // increases at every transition; equal runs are one continuous stretch
 };
 
+// Beats on beats inside a continuous stretch (ours): where the output plays on through an onset
+// of the new speech, the source clock is bent so that the reference's nearest kinematic beat (the
+// end of a stroke, graph/beats.h) lands on the onset, when one lies within max_shift frames and the
+// playback speed stays within [1 / max_rate, max_rate] of the piece's own. The pieces' own key
+// frames stay where the plan put them; the bend is as smooth as the rest of the clock (C1).
+struct BeatAlignment {
+  std::vector<int> onsets;  // output frames, ascending
+  std::vector<int> beats;   // source frames, ascending
+  int max_shift = 4;
+  double max_rate = 1.33;
+};
+
 // One clock per output frame (the sum of the pieces' lengths), reading the source's capture runs.
-std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs);
+// `beats` (optional) bends it onto the onsets as BeatAlignment says.
+std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const CaptureRuns& runs,
+                                         const BeatAlignment* beats = nullptr);
 // The same with `continues[f]`: source frame f is naturally followed by f + 1 (not a break node).
 std::vector<SourceClock> source_timeline(const std::vector<PathPiece>& pieces, const std::vector<char>& continues);
 

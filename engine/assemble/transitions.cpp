@@ -165,11 +165,11 @@ Motion assemble_inertialized(const Motion& source, const std::vector<char>& cont
 
 Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
                              const std::vector<PathPiece>& pieces, const BlendParams& params,
-                             const std::vector<int>& anchor_feet) {
+                             const std::vector<int>& anchor_feet, const BeatAlignment* beats) {
   if (!(params.halflife_s > 0.0)) throw Error("assemble: transition_halflife must be > 0");
   if (runs.frame_count() != source.frame_count) throw Error("assemble: the capture runs do not cover the source");
   if (!facts.known) throw Error("assemble: the source's capture facts are not known");
-  const std::vector<SourceClock> clock = source_timeline(pieces, runs);
+  const std::vector<SourceClock> clock = source_timeline(pieces, runs, beats);
   const int joints = source.joint_count();
   Motion out = motion_rest(source.skeleton, source.fps, static_cast<int>(clock.size()));
   const SourceReader reader(source, runs);

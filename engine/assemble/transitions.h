@@ -33,7 +33,7 @@ namespace gmg {
 // of a layered reenactment, which changes stance only with both feet planted). Empty: the root.
 Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, const CaptureFacts& facts,
                              const std::vector<PathPiece>& pieces, const BlendParams& params,
-                             const std::vector<int>& anchor_feet = {});
+                             const std::vector<int>& anchor_feet = {}, const BeatAlignment* beats = nullptr);
 
 // The same for a source described by `continues[f]` (source frame f is naturally followed by
 // f + 1), its capture facts computed over every frame first.

@@ -255,6 +255,11 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
                &BlendParams::foot_lock),
       number_key("foot_step_s", "seconds a released foot takes to step to where the leg puts it", &Config::blend,
                  &BlendParams::foot_step_s),
+      int_key("beat_shift",
+              "frames the upper body's kinematic beat may move to land on an onset it plays through (0: off)",
+              &Config::blend, &BlendParams::beat_shift, 0, 30),
+      number_key("beat_rate", "the most a beat's move may speed playback up or slow it down (times)", &Config::blend,
+                 &BlendParams::beat_rate),
       number_key("spine_follow",
                  "layered body: share of the pelvis difference the spine takes up so the chest keeps the gesture's "
                  "posture (1) or rides on the lower body's pelvis (0)",

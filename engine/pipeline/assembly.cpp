@@ -50,14 +50,26 @@ void check_played_frames(const MotionGraph& g, const Plan& plan) {
 
 }  // namespace
 
-Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params) {
+std::unique_ptr<BeatAlignment> beat_alignment(const MotionGraph& g, const std::vector<int>& onsets,
+                                              const BlendParams& params) {
+  if (params.beat_shift <= 0 || params.mode != BlendMode::Inertialize || g.beat_cost.empty()) return nullptr;
+  auto out = std::make_unique<BeatAlignment>();
+  out->onsets = onsets;
+  for (std::size_t f = 0; f < g.beat_cost.size(); ++f)
+    if (g.beat_cost[f] == 0.0f) out->beats.push_back(static_cast<int>(f));
+  out->max_shift = params.beat_shift;
+  out->max_rate = params.beat_rate;
+  return out;
+}
+
+Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params, const BeatAlignment* beats) {
   check_played_frames(g, plan);
   if (params.mode == BlendMode::Inertialize) {
     // The graph's capture facts, so that only the frames played are read; a graph made without
     // them (by hand) has them computed from every frame.
     const CaptureRuns runs = graph_runs(g);
     return assemble_inertialized(g.motion, runs, g.capture.known ? g.capture : capture_facts(g.motion, runs),
-                                 plan_pieces(plan), params);
+                                 plan_pieces(plan), params, {}, beats);
   }
   std::vector<Motion> pieces;
   pieces.reserve(plan.segments.size());

@@ -2,11 +2,14 @@
 // it, and what a report says of that body.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/assemble/blend.h"
+#include "engine/assemble/timeline.h"
 #include "engine/config/config.h"
 #include "engine/motion/motion.h"
 #include "graph/motion_graph.h"
@@ -20,7 +23,15 @@ BlendParams assembly_params(const Config& config);
 
 // Paths of a plan joined into one motion: by source time with inertialized transitions
 // (BlendMode::Inertialize), or resampled to their target lengths and blended (Offset, Crossfade).
-Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params);
+// `beats` (optional): beats onto onsets inside continuous stretches (engine/assemble/timeline.h).
+Motion assemble_motion(const MotionGraph& g, const Plan& plan, const BlendParams& params,
+                       const BeatAlignment* beats = nullptr);
+
+// The beats the upper body's assembly puts on the new speech's onsets: the onsets, the graph's
+// kinematic beats (graph/beats.h: its frames of end cost 0); null when params turn it off or the
+// graph has no beats.
+std::unique_ptr<BeatAlignment> beat_alignment(const MotionGraph& g, const std::vector<int>& onsets,
+                                              const BlendParams& params);
 
 // The graph's body along a plan: its shape and labels, and its face assembled as assemble_motion
 // assembles the motion (the same clock and transitions); no face when the graph has none.

@@ -48,10 +48,11 @@ LowerBody plan_lower_body(const MotionGraph& g, const std::vector<Anchor>& rests
   return out;
 }
 
-Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody& lower, const BlendParams& params) {
+Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody& lower, const BlendParams& params,
+                        const BeatAlignment* beats) {
   BlendParams p = params;
   p.foot_lock = false;
-  Motion upper = assemble_motion(g, plan, p);
+  Motion upper = assemble_motion(g, plan, p, beats);
   if (!lower.layers.layered()) return upper;
   std::vector<PathPiece> pieces;
   for (const LowerSegment& s : lower.plan.segments) {

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/assemble/timeline.h"
 #include "engine/config/config.h"
 #include "engine/motion/body_layers.h"
 #include "engine/motion/stance.h"
@@ -35,7 +36,9 @@ std::vector<Anchor> output_rests(const MotionGraph& g, const std::vector<float>&
 
 // The motion of a plan with a layered body: the upper plan and the lower plan each assembled
 // (without the foot lock: the lower body plays the capture's own feet), joined at the spine.
-Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody& lower, const BlendParams& params);
+// `beats` as assemble_motion's, for the upper body.
+Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody& lower, const BlendParams& params,
+                        const BeatAlignment* beats = nullptr);
 
 // Per output frame, how much the new speech pauses (audio::pause_weight of its loudness); empty
 // without speech features.

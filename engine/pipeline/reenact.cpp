@@ -39,8 +39,11 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   const std::vector<Anchor> rests = output_rests(g, events.features.values, events.total_frames, config);
   r.plan = plan_reenactment(g, subs, config.search, rng, events.features.values, rests);
   const LowerBody lower = plan_lower_body(g, rests, events.total_frames, config, rng);
-  r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, assembly_params(config))
-                                    : assemble_motion(g, r.plan, assembly_params(config));
+  const BlendParams blend = assembly_params(config);
+  const std::unique_ptr<BeatAlignment> beats =
+      config.search.planner == PlannerMode::Natural ? beat_alignment(g, events.onset_frames, blend) : nullptr;
+  r.motion = lower.layers.layered() ? assemble_layered(g, r.plan, lower, blend, beats.get())
+                                    : assemble_motion(g, r.plan, blend, beats.get());
   motion_from_y_up(r.motion, g.up);  // the output in the reference's own up axis
   r.body = assemble_body(g, r.plan, assembly_params(config));
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
