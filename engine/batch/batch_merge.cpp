@@ -77,10 +77,8 @@ void check_output_apart_from_parts(const std::vector<std::string>& part_dirs, co
 // What a part's clips were reenacted from, in words: "the graph g.gmg" or "a pool of 3 reference
 // clips".
 std::string setup_of(const BatchSummary& s) {
-  if (s.references.size() == 1 && s.references.front().audio.empty())
-    return "the graph " + s.references.front().motion;
-  return "a pool of " + std::to_string(s.references.size()) + " reference clip" +
-         (s.references.size() == 1 ? "" : "s");
+  if (s.references.size() == 1 && s.references.front().audio.empty()) return "the graph " + s.references.front().motion;
+  return "a pool of " + std::to_string(s.references.size()) + " reference clip" + (s.references.size() == 1 ? "" : "s");
 }
 
 // Why `p` is not from the same setup as `first` (their references, or what their batch.json

@@ -76,8 +76,8 @@ std::string record_difference(const nlohmann::json& old, const nlohmann::json& n
       return std::string(key) + " " + json_dump(field(old, key), -1) + ", not " + json_dump(field(now, key), -1);
   const nlohmann::json pool = field(now, "pool"), old_pool = field(old, "pool");
   if (old_pool != pool)
-    return "another pool (" + std::to_string(old_pool.size()) + " reference clips, not " +
-           std::to_string(pool.size()) + ")";
+    return "another pool (" + std::to_string(old_pool.size()) + " reference clips, not " + std::to_string(pool.size()) +
+           ")";
   const nlohmann::json params = field(now, "parameters"), old_params = field(old, "parameters");
   if (!old_params.is_object() || !params.is_object()) return "no parameters";
   for (auto it = params.begin(); it != params.end(); ++it)

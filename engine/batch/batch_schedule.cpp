@@ -109,9 +109,10 @@ class Scheduler {
     std::vector<std::string> warnings;  // a reference's audio and motion of different lengths, decoder damage
     try {
       // A --graph, loaded before the run, is shared like a built one.
-      graph = setup_.graph ? setup_.graph
-                           : std::make_shared<const MotionGraph>(
-                                 graph_build_from_files({files}, setup_.config, {}, 1, &warnings));
+      graph =
+          setup_.graph
+              ? setup_.graph
+              : std::make_shared<const MotionGraph>(graph_build_from_files({files}, setup_.config, {}, 1, &warnings));
     } catch (const std::exception& e) {
       error = e.what();
     }

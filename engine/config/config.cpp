@@ -54,13 +54,13 @@ std::string format_double(double v) { return format_number(v); }
 
 // What a key's value is, for the JSON types a config file may give it.
 enum class KeyKind {
-  Number,      // a JSON number
-  Whole,       // a JSON number with a whole value (4.0 is read as 4)
-  Bool,        // true or false
-  Text,        // a string (a file name)
-  Choice,      // a string naming one of the mode's values
-  Numbers,     // an array of numbers (w_full)
-  Texts,       // an array of strings (lock_joints)
+  Number,   // a JSON number
+  Whole,    // a JSON number with a whole value (4.0 is read as 4)
+  Bool,     // true or false
+  Text,     // a string (a file name)
+  Choice,   // a string naming one of the mode's values
+  Numbers,  // an array of numbers (w_full)
+  Texts,    // an array of strings (lock_joints)
 };
 
 struct Accessor {
@@ -132,8 +132,8 @@ Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*fi
             if (!e) {
               std::vector<std::string> names;
               for (const EnumName<E>& n : table) names.emplace_back(n.name);
-              throw Error(std::string("config key '") + name + "': '" + shorten_for_message(v) + "' is not " + enum_choices(table) +
-                          did_you_mean(v, names));
+              throw Error(std::string("config key '") + name + "': '" + shorten_for_message(v) + "' is not " +
+                          enum_choices(table) + did_you_mean(v, names));
             }
             (c.*group).*field = *e;
           },
@@ -322,7 +322,8 @@ void config_set(Config& config, const std::string& key, const std::string& value
 
 void config_set_assignment(Config& config, const std::string& assignment) {
   const std::size_t eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0) throw Error("--set expects key=value, got '" + shorten_for_message(assignment) + "'");
+  if (eq == std::string::npos || eq == 0)
+    throw Error("--set expects key=value, got '" + shorten_for_message(assignment) + "'");
   config_set(config, assignment.substr(0, eq), assignment.substr(eq + 1));
 }
 

@@ -32,7 +32,9 @@ void check_one_transcript(const py::object& transcript, const py::object& words,
 bool clip_on_files(const ClipArgs& c) { return is_path(c.motion) && is_path(c.audio) && c.words.is_none(); }
 
 std::string opt_path(const py::object& o) { return o.is_none() ? std::string() : path_of(o); }
-std::string opt_text(const py::object& o, const std::string& what) { return o.is_none() ? std::string() : text_of(o, what); }
+std::string opt_text(const py::object& o, const std::string& what) {
+  return o.is_none() ? std::string() : text_of(o, what);
+}
 
 ReferenceFiles files_of(const ClipArgs& c, text::TranscriptFormat format) {
   return {path_of(c.motion),

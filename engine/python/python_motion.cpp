@@ -189,7 +189,9 @@ Skeleton skeleton_of(const py::handle& names, const py::handle& parents, const A
     const long long parent = p.data()[j];
     if (j == 0 ? parent != -1 : (parent < 0 || parent >= j))
       throw Error("parents: joint " + std::to_string(j) + " ('" + joint.name + "') has parent " +
-                  std::to_string(parent) + (j == 0 ? "; the root's must be -1" : "; a parent comes before its child (0 to " + std::to_string(j - 1) + ")"));
+                  std::to_string(parent) +
+                  (j == 0 ? "; the root's must be -1"
+                          : "; a parent comes before its child (0 to " + std::to_string(j - 1) + ")"));
     joint.parent = static_cast<int>(parent);
     depth.push_back(j == 0 ? 1 : depth[static_cast<std::size_t>(parent)] + 1);
     if (depth.back() > limits::kMaxHierarchyDepth)

@@ -13,8 +13,8 @@
 #include <pybind11/pybind11.h>
 
 #include "audio/wav.h"
-#include "engine/core/error.h"
 #include "engine/config/config.h"
+#include "engine/core/error.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
 #include "engine/pipeline/pipeline.h"

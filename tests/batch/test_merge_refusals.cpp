@@ -56,9 +56,9 @@ class MergeRefusals : public ::testing::Test {
                      "--shard", std::string(k) + "/2", "--progress", "none"})
                     .code,
                 0);
-    ASSERT_EQ(gmg({"build", "--motion", at("pool/ref_0.bvh"), "--audio", at("pool/ref_0.wav"), "-o", at("ref_0.gmg")})
-                  .code,
-              0);
+    ASSERT_EQ(
+        gmg({"build", "--motion", at("pool/ref_0.bvh"), "--audio", at("pool/ref_0.wav"), "-o", at("ref_0.gmg")}).code,
+        0);
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static std::string at(const std::string& name) { return dir_->file(name); }
@@ -85,10 +85,8 @@ TEST_F(MergeRefusals, AnOutputThatIsHoldsOrLiesInAPartIsRefusedAndNothingChanges
   const std::string p1 = work.file("parts/p1"), p2 = work.file("parts/p2");
   const auto before = snapshot(work.path());
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {p1, "-o " + p1 + " is the part folder " + p1},
-      {p1 + "/", "is the part folder " + p1},
-      {work.file("parts/x/../p2"), "is the part folder " + p2},
-      {work.file("parts"), "holds the part folder " + p1},
+      {p1, "-o " + p1 + " is the part folder " + p1},           {p1 + "/", "is the part folder " + p1},
+      {work.file("parts/x/../p2"), "is the part folder " + p2}, {work.file("parts"), "holds the part folder " + p1},
       {p1 + "/merged", "lies inside the part folder " + p1},
   };
   for (const auto& [out, problem] : cases) {
@@ -110,7 +108,8 @@ TEST_F(MergeRefusals, AMergeRefusedForAMissingOutputWritesNothing) {
     if (e.path().extension() == ".bvh") missing = e.path();
   ASSERT_FALSE(missing.empty());
   fs::remove(missing);
-  const testing::CliRun r = gmg({"batch", "--merge", work.file("parts/p1"), work.file("parts/p2"), "-o", work.file("m")});
+  const testing::CliRun r =
+      gmg({"batch", "--merge", work.file("parts/p1"), work.file("parts/p2"), "-o", work.file("m")});
   expect_refused(r, missing.string() + " is missing");
   EXPECT_FALSE(fs::exists(work.file("m"))) << "the refused merge created its output folder";
   // Into a folder that exists: it keeps what it held, and gets nothing.
@@ -121,7 +120,8 @@ TEST_F(MergeRefusals, AMergeRefusedForAMissingOutputWritesNothing) {
   EXPECT_EQ(snapshot(work.file("kept")), (std::map<std::string, std::string>{{"note.txt", "mine"}}));
   // With every output there, the merge writes the whole batch.
   fs::copy_file(at("parts/p2") + "/" + missing.filename().string(), missing);
-  const testing::CliRun ok = gmg({"batch", "--merge", work.file("parts/p1"), work.file("parts/p2"), "-o", work.file("m")});
+  const testing::CliRun ok =
+      gmg({"batch", "--merge", work.file("parts/p1"), work.file("parts/p2"), "-o", work.file("m")});
   ASSERT_EQ(ok.code, 0) << ok.err;
   for (const char* f : {"t1.bvh", "t2.bvh", "t3.bvh", "summary.csv", "summary.json", "pairs.csv"})
     EXPECT_TRUE(fs::exists(work.file(std::string("m/") + f))) << f;
@@ -149,8 +149,8 @@ TEST_F(MergeRefusals, PartsOfDifferentSetupsAreRefusedNamingTheDifference) {
 
 TEST_F(MergeRefusals, AnEmptyShardIsRefusedLikeAnyOtherThatIsNotKOfN) {
   for (const char* shard : {"", "0/0", "3/2"}) {
-    expect_refused(gmg({"batch", "--pool", at("pool"), "--tests", at("tests"), "-o", work.file("out"), "--shard",
-                        shard, "--progress", "none"}),
+    expect_refused(gmg({"batch", "--pool", at("pool"), "--tests", at("tests"), "-o", work.file("out"), "--shard", shard,
+                        "--progress", "none"}),
                    std::string("--shard expects K/N with 1 <= K <= N, got '") + shard + "'");
     EXPECT_FALSE(fs::exists(work.file("out"))) << shard;
   }

@@ -33,13 +33,15 @@ std::string load_error(const std::string& text) {
 TEST(ConfigTypes, AValueOfAnotherJsonTypeThanItsKeysIsRefusedNamingBoth) {
   EXPECT_EQ(load_error(R"({"speech_weight": "3"})"),
             R"(c.json: config key 'speech_weight': expected a number, got a string ("3"))");
-  EXPECT_EQ(load_error(R"({"variety": [0.3]})"), "c.json: config key 'variety': expected a number, got an array ([0.3])");
+  EXPECT_EQ(load_error(R"({"variety": [0.3]})"),
+            "c.json: config key 'variety': expected a number, got an array ([0.3])");
   EXPECT_EQ(load_error(R"({"l_pn": "5"})"), R"(c.json: config key 'l_pn': expected a number, got a string ("5"))");
   EXPECT_EQ(load_error(R"({"seed": "5"})"), R"(c.json: config key 'seed': expected a number, got a string ("5"))");
   EXPECT_EQ(load_error(R"({"l_pn": true})"), "c.json: config key 'l_pn': expected a number, got true or false (true)");
   EXPECT_EQ(load_error(R"({"fallbacks": "true"})"),
             R"(c.json: config key 'fallbacks': expected true or false, got a string ("true"))");
-  EXPECT_EQ(load_error(R"({"fallbacks": 1})"), "c.json: config key 'fallbacks': expected true or false, got a number (1)");
+  EXPECT_EQ(load_error(R"({"fallbacks": 1})"),
+            "c.json: config key 'fallbacks': expected true or false, got a number (1)");
   EXPECT_EQ(load_error(R"({"planner": 1})"), "c.json: config key 'planner': expected a string, got a number (1)");
   EXPECT_EQ(load_error(R"({"keywords": null})"), "c.json: config key 'keywords': expected a string, got null (null)");
   EXPECT_EQ(load_error(R"({"w_full": "1,2"})"),
@@ -75,8 +77,8 @@ TEST(ConfigTypes, AHugeUnknownKeyIsQuotedShortAndFoundUnknownInLinearTime) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string e = load_error("{\"" + key + "\": 1}");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_EQ(e, "c.json: unknown config key '" + std::string(60, 'x') +
-                   "\u2026' (run 'gmg config --keys' for the list)");
+  EXPECT_EQ(e,
+            "c.json: unknown config key '" + std::string(60, 'x') + "\u2026' (run 'gmg config --keys' for the list)");
   EXPECT_LT(seconds, 5.0);  // was 14 s to 20 s: the edit distance to every key name, quadratic
   // A long value is cut the same way, at a character's start.
   const std::string value = std::string(59, 'a') + "\u00e9" + std::string(1000, 'b');
