@@ -97,9 +97,10 @@ void add_batch_command(CLI::App& app, int* exit_code) {
   sub->add_flag("--reports", o.reports, "also write OUTDIR/<stem>.json, each reenactment's report");
   sub->add_option("--progress", st->progress, "auto (updating line on a terminal), lines, or none")
       ->check(CLI::IsMember(names_of(kBatchProgressNames)));
-  CLI::Option* shard_opt = sub->add_option("--shard", st->shard,
-                  "run part K of N (K/N): every N-th test clip in stem order from the K-th, paired as in one run; "
-                  "give each part its own -o folder");
+  CLI::Option* shard_opt =
+      sub->add_option("--shard", st->shard,
+                      "run part K of N (K/N): every N-th test clip in stem order from the K-th, paired as in one run; "
+                      "give each part its own -o folder");
   sub->add_option("--merge", st->merge,
                   "join the summaries of the part folders given (every part of one batch once) into -o OUTDIR")
       ->expected(1, -1);
