@@ -8,6 +8,8 @@
 #include "engine/batch/batch_internal.h"
 #include "engine/core/error.h"
 #include "engine/core/parallel.h"
+#include "engine/pipeline/pipeline.h"
+#include "graph/graph_io.h"
 
 namespace gmg {
 namespace {
@@ -168,6 +170,16 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
   std::set<std::string> blacklist;
   if (!options.blacklist.empty()) blacklist = read_blacklist(options.blacklist);
   const std::vector<std::string> pool_stems = eligible_pool(clips.pool, blacklist, options, &summary.blacklisted);
+  // A --graph is read before anything is written: a file that is not a graph (or lacks a joint
+  // lock_joints names) stops the batch, as `gmg reenact --graph` stops, rather than failing
+  // every clip. Its motion is checked where it is played (MotionCheck::OnUse).
+  std::shared_ptr<const MotionGraph> graph;
+  const Clock::time_point t_graph = Clock::now();
+  if (!options.graph.empty()) {
+    graph = std::make_shared<const MotionGraph>(graph_load(options.graph, MotionCheck::OnUse));
+    check_lock_joints_of_graph(*graph, clip_config, options.graph);
+  }
+  const double graph_seconds = seconds_since(t_graph);
   const OutputFolder out = prepare_output_folder(options, progress);  // locked until the end of the run
   const fs::path& out_dir = out.dir;
   check_and_write_run_record(out_dir, options.output_dir,
@@ -185,7 +197,8 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
   summary.jobs = worker_count(options.jobs);
   const std::size_t finished = announce(summary, clips, pairing, pool_stems.size(), progress);
   const int workers = worker_count(summary.jobs, pending_count(summary.clips));
-  run_clips(summary, RunSetup{options, clip_config, clips.tests, out_dir, progress}, workers, finished);
+  run_clips(summary, RunSetup{options, clip_config, clips.tests, out_dir, progress, graph, graph_seconds}, workers,
+            finished);
   progress.finish();
 
   count_statuses(summary);

@@ -24,8 +24,10 @@
 //   Missing files are not a setup error: they fail the clips that need them.
 //
 // - A built graph (`--graph G.gmg`, instead of a pool): every test clip is reenacted from it. It
-//   is loaded once and shared by all workers (a graph of hours of reference, built with
-//   `gmg build --clips`, is not copied per clip); its stem is the clips' reference in pairs.csv.
+//   is loaded once, before the output folder is made, and shared by all workers (a graph of hours
+//   of reference, built with `gmg build --clips`, is not copied per clip); a file that is not a
+//   usable graph (or lacks a joint lock_joints names) is a setup error. Its stem is the clips'
+//   reference in pairs.csv.
 //
 // Pairing
 // - random (default): pool minus blacklist, sorted by stem. Test clips are taken in stem order
@@ -78,8 +80,12 @@
 //   and pairs.csv (clips by test stem), and puts every part's outputs (BVH and report) into
 //   OUTDIR too, hard-linked when on the same file system, else copied, so OUTDIR holds the whole
 //   batch as one run would (each clip's output path names its copy there). It needs every part
-//   1..N of one batch exactly once (same N, seed, pairing and clip count) and no test clip in two
-//   parts; otherwise it stops with an error naming the folders.
+//   1..N of one batch exactly once (same N, seed, pairing and clip count, the same references:
+//   the same pool or the same --graph, and the same parameters in each part's batch.json), no
+//   test clip in two parts, every output a part's summary lists, and an OUTDIR that is none of
+//   the parts, holds none and lies in none; otherwise it stops with an error naming the folders
+//   and what differs, before it writes anything. What it writes appears together (staged, then
+//   renamed into place), so a merge that fails leaves OUTDIR as it was.
 #pragma once
 
 #include <atomic>
@@ -202,8 +208,9 @@ BatchSummary batch_run(const BatchOptions& options, const Config& config, std::o
 
 // Joins the summaries of parts made with --shard (each folder's summary.json) into out_dir's
 // summary.csv, summary.json and pairs.csv (see "Shards"); returns the joined summary. Throws
-// gmg::Error naming the folders when a part is missing, given twice, from another batch, or
-// shares a test clip with another.
+// gmg::Error naming the folders, before writing anything, when a part is missing, given twice,
+// from another batch or setup, lacks an output its summary lists, or shares a test clip with
+// another, or when out_dir is, holds or lies in a part.
 BatchSummary batch_merge(const std::vector<std::string>& part_dirs, const std::string& out_dir, std::ostream& progress);
 
 // The pairing draw (exposed for tests): for each test stem in the given order, one draw from

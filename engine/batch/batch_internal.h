@@ -32,6 +32,10 @@
 #include "engine/batch/batch_clips.h"
 #include "engine/batch/batch_progress.h"
 
+namespace gmg {
+struct MotionGraph;
+}  // namespace gmg
+
 namespace gmg::batch {
 
 namespace fs = std::filesystem;
@@ -99,6 +103,11 @@ OutputFolder prepare_output_folder(const BatchOptions& options, Progress& progre
 nlohmann::ordered_json run_record(std::uint64_t seed, BatchPairing pairing, const std::vector<std::string>& pool_stems,
                                   const Config& config);
 
+// What differs between two run records (run_record, or a batch.json read back), in words ("seed
+// 1, not 2", "another pool (3 reference clips, not 1)", "parameter l_pn = 5, not 7"); "" when
+// nothing does.
+std::string record_difference(const nlohmann::json& old, const nlohmann::json& now);
+
 // Throws gmg::Error when OUTDIR holds outputs of a test clip of this run (which would be skipped)
 // and its batch.json records another seed, pairing, pool or parameters, unless `force` (every
 // clip is then redone): outputs of two settings would mix silently. Then writes `record`.
@@ -150,6 +159,10 @@ struct RunSetup {
   const ClipMap& tests;
   const fs::path& out_dir;
   Progress& progress;
+  // The --graph, loaded before the run (a file that is not a graph is a setup error, not a
+  // failure of every clip), and the seconds its load took; null without --graph.
+  std::shared_ptr<const MotionGraph> graph{};
+  double graph_seconds = 0;
 };
 
 // Makes every pending clip of summary.clips with `workers` threads, building each

@@ -31,30 +31,6 @@ void check_not_an_input_folder(const BatchOptions& options, const fs::path& out_
 // The same value as an unordered json, to compare with one read from a file.
 nlohmann::json plain(const nlohmann::ordered_json& j) { return parse_json_text(json_dump(j, -1), "batch record"); }
 
-// What differs between the folder's record and this run's, in words ("seed 1, not 2"); "" when
-// nothing does.
-std::string record_difference(const nlohmann::json& old, const nlohmann::ordered_json& now) {
-  if (!old.is_object()) return "an unreadable record";
-  for (const char* key : {"seed", "pairing"}) {
-    const nlohmann::json mine = plain(now[key]);
-    if (!old.contains(key) || old[key] != mine)
-      return std::string(key) + " " + (old.contains(key) ? json_dump(old[key], -1) : "none") + ", not " +
-             json_dump(now[key], -1);
-  }
-  const nlohmann::json pool = plain(now["pool"]);
-  if (!old.contains("pool") || old["pool"] != pool)
-    return "another pool (" + std::to_string(old.contains("pool") ? old["pool"].size() : 0) + " reference clips, not " +
-           std::to_string(pool.size()) + ")";
-  const nlohmann::json params = plain(now["parameters"]);
-  if (!old.contains("parameters") || !old["parameters"].is_object()) return "no parameters";
-  for (auto it = params.begin(); it != params.end(); ++it)
-    if (!old["parameters"].contains(it.key()) || old["parameters"][it.key()] != it.value())
-      return "parameter " + it.key() + " = " +
-             (old["parameters"].contains(it.key()) ? json_dump(old["parameters"][it.key()], -1) : "none") + ", not " +
-             json_dump(it.value(), -1);
-  return "";
-}
-
 }  // namespace
 
 FolderLock::FolderLock(const fs::path& dir, const std::string& name) {
@@ -91,6 +67,26 @@ OutputFolder prepare_output_folder(const BatchOptions& options, Progress& progre
   return out;
 }
 
+std::string record_difference(const nlohmann::json& old, const nlohmann::json& now) {
+  if (!old.is_object() || !now.is_object()) return "an unreadable record";
+  // A key's value, null when absent (either record may come from a file).
+  const auto field = [](const nlohmann::json& j, const char* key) { return j.value(key, nlohmann::json()); };
+  for (const char* key : {"seed", "pairing"})
+    if (field(old, key) != field(now, key))
+      return std::string(key) + " " + json_dump(field(old, key), -1) + ", not " + json_dump(field(now, key), -1);
+  const nlohmann::json pool = field(now, "pool"), old_pool = field(old, "pool");
+  if (old_pool != pool)
+    return "another pool (" + std::to_string(old_pool.size()) + " reference clips, not " + std::to_string(pool.size()) +
+           ")";
+  const nlohmann::json params = field(now, "parameters"), old_params = field(old, "parameters");
+  if (!old_params.is_object() || !params.is_object()) return "no parameters";
+  for (auto it = params.begin(); it != params.end(); ++it)
+    if (field(old_params, it.key().c_str()) != it.value())
+      return "parameter " + it.key() + " = " + json_dump(field(old_params, it.key().c_str()), -1) + ", not " +
+             json_dump(it.value(), -1);
+  return "";
+}
+
 nlohmann::ordered_json run_record(std::uint64_t seed, BatchPairing pairing, const std::vector<std::string>& pool_stems,
                                   const Config& config) {
   nlohmann::ordered_json record;
@@ -119,7 +115,7 @@ void check_and_write_run_record(const fs::path& out_dir, const std::string& name
     } catch (const Error&) {
       old = nullptr;
     }
-    const std::string difference = has_outputs ? record_difference(old, record) : "";
+    const std::string difference = has_outputs ? record_difference(old, plain(record)) : "";
     if (!difference.empty())
       throw Error(name + ": holds outputs of a run with " + difference + " (" + path.string() +
                   "); they would mix with this run's. Use another folder, the same settings, or --force to redo "

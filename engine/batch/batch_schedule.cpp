@@ -108,15 +108,15 @@ class Scheduler {
     std::string error;
     std::vector<std::string> warnings;  // a reference's audio and motion of different lengths, decoder damage
     try {
-      // A --graph is loaded (moved into place, not copied) and shared like a built one.
-      graph = std::make_shared<const MotionGraph>(setup_.options.graph.empty()
-                                                      ? graph_build_from_files({files}, setup_.config, {}, 1, &warnings)
-                                                      : graph_load(setup_.options.graph, MotionCheck::OnUse));
-      if (!setup_.options.graph.empty()) check_lock_joints_of_graph(*graph, setup_.config, setup_.options.graph);
+      // A --graph, loaded before the run, is shared like a built one.
+      graph =
+          setup_.graph
+              ? setup_.graph
+              : std::make_shared<const MotionGraph>(graph_build_from_files({files}, setup_.config, {}, 1, &warnings));
     } catch (const std::exception& e) {
       error = e.what();
     }
-    const double secs = seconds_since(t0);
+    const double secs = setup_.graph ? setup_.graph_seconds : seconds_since(t0);
     lock.lock();
     for (const std::string& w : warnings) setup_.progress.line("batch: warning: " + escape_nonprintable(w));
     rr.build_seconds = secs;

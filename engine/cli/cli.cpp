@@ -19,11 +19,15 @@ namespace gmg {
 
 namespace {
 
-// Every --help ends with it (README "Bad input and exit codes" is the long form).
+// Every --help ends with it (README "Bad input and exit codes" is the long form). The rule: 2 is
+// decided from the command line's text alone, before any file is read (UsageError and CLI11's
+// parse errors); 1 needs the files (engine/cli/cli_common.h).
 const char* const kExitCodes =
-    "Exit codes: 0 success; 1 an input or processing error (batch: some clip failed); 2 a usage error (batch: a "
-    "setup error); interrupted by Ctrl-C (SIGINT) 130, by SIGTERM 143, by SIGHUP 129: temporary files removed, the "
-    "process ends by the signal.";
+    "Exit codes: 0 success; 2 the command line is wrong, found before any file is read (an unknown option, a value "
+    "out of range or of the wrong form, options that contradict, an output whose extension names no format it "
+    "writes); 1 an input file cannot be read or is refused, an output cannot be written where asked, or the work "
+    "failed; batch: 1 some clip failed, 2 the batch could not start; interrupted by Ctrl-C (SIGINT) 130, by SIGTERM "
+    "143, by SIGHUP 129: temporary files removed, the process ends by the signal.";
 
 // "gmg reenact" for the subcommand the parse reached, so the hint names the right --help.
 std::string command_path(const CLI::App& app) {

@@ -19,6 +19,7 @@ struct AblationArgs {
 };
 
 void run_ablation(AblationArgs& a) {
+  check_output_extensions({{"--csv", a.csv, kCsvExtensions}});
   a.options.seeds.clear();
   for (int i = 0; i < a.seeds; ++i) a.options.seeds.push_back(static_cast<std::uint64_t>(i + 1));
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
@@ -49,15 +50,16 @@ void add_ablation_command(CLI::App& app) {
   cmd->add_option("--audio", a->audio, "its WAV")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (optional)");
   cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --motion its skeleton");
-  cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)")
-      ->check(CLI::Range(2, 1000))
+  number_check(
+      cmd->add_option("--folds", a->options.folds, "time folds: each K-th is the test part once (>= 2)"),
+      [](double x) { return x >= 2 && x <= 1000 && x == static_cast<int>(x); }, "a whole number from 2 to 1000")
       ->capture_default_str();
   positive_number(whole_number(cmd->add_option("--seeds", a->seeds, "seeds per setup and fold (1..)"), 10000))
       ->capture_default_str();
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
-  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
+  positive_number(cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s"))
       ->capture_default_str();
   cmd->add_option("--csv", a->csv, "also write the table as CSV (.csv)");
   a->config.add(cmd, false);

@@ -22,8 +22,7 @@ struct AnalyseArgs {
 
 void run_analyse(const AnalyseArgs& a) {
   const bool csv = ends_with_ci(a.output, ".csv");
-  if (!a.output.empty() && !csv && !ends_with_ci(a.output, ".json"))
-    throw UsageError("analyse: -o must end in .json or .csv, got '" + a.output + "'");
+  check_output_extensions({{"-o", a.output, {".json", ".csv"}}});
   const Config cfg = a.config.make();
   std::vector<NamedFile> inputs = {{"--audio", a.audio}, {"--transcript", transcript_or_none(a.transcript)}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
@@ -49,7 +48,10 @@ void add_analyse_command(CLI::App& app) {
   cmd->add_option("--audio", a->audio, "the speech (WAV, FLAC, MP3, ...)")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (TSV, TextGrid, Google/Whisper JSON; optional)");
   cmd->add_option("--tier", a->tier, "TextGrid tier of the words");
-  cmd->add_option("--fps", a->fps, "frame rate of the motion grid")->capture_default_str();
+  number_check(
+      cmd->add_option("--fps", a->fps, "frame rate of the motion grid"), [](double x) { return x > 0 && x <= 1000; },
+      "a frame rate above 0 and at most 1000")
+      ->capture_default_str();
   cmd->add_option("-o,--output", a->output,
                   "write JSON (.json: everything) or CSV (.csv: one line per onset and keyword); default: JSON on "
                   "standard output");

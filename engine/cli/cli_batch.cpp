@@ -47,7 +47,7 @@ void add_clip_options(CLI::App* sub, BatchOptions& o) {
 }
 
 // Runs the batch for the parsed command line; the exit code (see add_batch_command).
-int run_batch_command(const BatchCliState& st, bool seed_given) {
+int run_batch_command(const BatchCliState& st, bool seed_given, bool shard_given) {
   try {
     if (!st.merge.empty()) {
       const BatchSummary s = batch_merge(st.merge, st.options.output_dir, std::cerr);
@@ -56,7 +56,7 @@ int run_batch_command(const BatchCliState& st, bool seed_given) {
     const Config config = config_from(st.config_file, st.sets);
     BatchOptions options = st.options;
     if (seed_given) options.seed = st.seed;
-    if (!st.shard.empty()) options.shard = parse_batch_shard(st.shard);
+    if (shard_given) options.shard = parse_batch_shard(st.shard);  // --shard '' is no part either
     if (!st.pairing.empty()) options.pairing = enum_from_name(kBatchPairingNames, st.pairing).value();
     options.progress = enum_from_name(kBatchProgressNames, st.progress).value_or(BatchProgress::Auto);
     const InterruptFlag interrupt;
@@ -97,15 +97,18 @@ void add_batch_command(CLI::App& app, int* exit_code) {
   sub->add_flag("--reports", o.reports, "also write OUTDIR/<stem>.json, each reenactment's report");
   sub->add_option("--progress", st->progress, "auto (updating line on a terminal), lines, or none")
       ->check(CLI::IsMember(names_of(kBatchProgressNames)));
-  sub->add_option("--shard", st->shard,
-                  "run part K of N (K/N): every N-th test clip in stem order from the K-th, paired as in one run; "
-                  "give each part its own -o folder");
+  CLI::Option* shard_opt =
+      sub->add_option("--shard", st->shard,
+                      "run part K of N (K/N): every N-th test clip in stem order from the K-th, paired as in one run; "
+                      "give each part its own -o folder");
   sub->add_option("--merge", st->merge,
                   "join the summaries of the part folders given (every part of one batch once) into -o OUTDIR")
       ->expected(1, -1);
   sub->add_option("--config", st->config_file, "JSON config file of engine parameters");
   sub->add_option("--set", st->sets, "engine parameter key=value; repeatable");
-  sub->callback([st, seed_opt, exit_code] { *exit_code = run_batch_command(*st, seed_opt->count() > 0); });
+  sub->callback([st, seed_opt, shard_opt, exit_code] {
+    *exit_code = run_batch_command(*st, seed_opt->count() > 0, shard_opt->count() > 0);
+  });
 }
 
 }  // namespace gmg

@@ -92,6 +92,7 @@ BuildProgress progress_display(const std::string& mode, std::shared_ptr<batch::P
 }
 
 void run_build(const BuildArgs& a) {
+  check_output_extensions({{"-o", a.output, kGraphExtensions}});
   const std::vector<ReferenceFiles> clips = clips_of(a);
   const Config cfg = a.config.make();
   std::vector<NamedFile> inputs = config_input_files(a.config, cfg);
@@ -129,7 +130,8 @@ void add_build_command(CLI::App& app) {
                   "its speech: WAV, FLAC, MP3, OGG, M4A, ... (repeat per clip, in the same order)");
   cmd->add_option("--transcript", a->transcript,
                   "its transcript (.tsv, .TextGrid, .json) or 'none' (repeat per clip when given)");
-  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
+  transcript_format_check(
+      cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)"));
   cmd->add_option("--tier", a->tier, "TextGrid tier of the words (default: 'words', else the only interval tier)");
   cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives .npz motions their skeleton");
   cmd->add_option("--clips", a->clips,

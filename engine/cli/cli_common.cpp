@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <limits>
 
@@ -11,6 +12,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
+#include "text/transcript.h"
 
 namespace gmg {
 
@@ -31,11 +33,40 @@ CLI::Option* whole_number(CLI::Option* option, std::uint64_t max) {
       ""));
 }
 
+CLI::Option* number_check(CLI::Option* option, const std::function<bool(double)>& ok, const std::string& wanted) {
+  return option->check(CLI::Validator(
+      [ok, wanted](std::string& v) -> std::string {
+        const std::optional<double> x = parse_number(v);  // not nan or inf
+        return x && ok(*x) ? std::string() : "'" + shorten_for_message(v) + "' is not " + wanted;
+      },
+      ""));
+}
+
 CLI::Option* positive_number(CLI::Option* option) {
+  return number_check(
+      option, [](double x) { return x > 0; }, "a number above 0");
+}
+
+CLI::Option* seconds_number(CLI::Option* option) {
+  return number_check(
+      option, [](double x) { return x >= 0; }, "a time in seconds, 0 or above");
+}
+
+CLI::Option* number_from_to(CLI::Option* option, double lo, double hi) {
+  return number_check(
+      option, [lo, hi](double x) { return x >= lo && x <= hi; },
+      "a number from " + format_number(lo) + " to " + format_number(hi));
+}
+
+CLI::Option* transcript_format_check(CLI::Option* option) {
   return option->check(CLI::Validator(
       [](std::string& v) -> std::string {
-        const std::optional<double> x = parse_number(v);
-        return x && *x > 0 ? std::string() : "'" + v + "' is not a number above 0";
+        try {
+          text::parse_transcript_format(v);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return "";
       },
       ""));
 }
@@ -77,7 +108,17 @@ std::vector<NamedFile> config_input_files(const ConfigOptions& options, const Co
 
 std::string transcript_or_none(const std::string& t) { return t == "none" ? std::string() : t; }
 
+void check_output_extensions(const std::vector<OutputSpec>& outputs, const std::string& hint) {
+  for (const OutputSpec& o : outputs)
+    if (!o.path.empty() && !o.extensions.empty() &&
+        std::none_of(o.extensions.begin(), o.extensions.end(),
+                     [&](const std::string& e) { return ends_with_ci(o.path, e); }))
+      throw UsageError(o.path + ": " + o.option + " must be a " + extension_list(o.extensions) +
+                       " file (its extension chooses the format)" + hint);
+}
+
 void check_outputs(const std::vector<OutputSpec>& outputs) {
+  check_output_extensions(outputs);
   for (const OutputSpec& o : outputs) check_output_file({o.option, o.path}, o.extensions);
 }
 

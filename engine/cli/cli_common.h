@@ -4,15 +4,20 @@
 // as the callback (and so as app). A callback reports a problem by throwing gmg::Error; cli_main
 // prints it and exits with 1, or with 2 for a UsageError.
 //
-// Conventions of every subcommand: exit 0 on success, 1 on an input or processing error, 2 on a
-// usage error (CLI11's parse errors, an unknown command or option, with the nearest name, and
-// UsageError), each error one line "gmg: error: ..." with its non-printable bytes escaped; an
-// interrupt ends the process by its signal (engine/core/interrupt.h);
+// Conventions of every subcommand: exit 0 on success; 2 when the command line is wrong, found
+// from its text alone before any file is read (CLI11's parse errors, an unknown command or option,
+// with the nearest name, a value out of range or of the wrong form, options that contradict or
+// need each other, an output whose extension names no format the option writes: UsageError); 1
+// when an input file cannot be read or holds what gmg refuses, an output cannot be written where
+// it is asked for, or the work fails (Error). `gmg batch` keeps its own: 1 some clip failed, 2 the
+// batch could not start. Each error is one line "gmg: error: ..." with its non-printable bytes
+// escaped; an interrupt ends the process by its signal (engine/core/interrupt.h);
 // `--help` shows every option's default; JSON output has snake_case keys and numbers in their
 // shortest round-trip form.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,22 +59,33 @@ struct ConfigOptions {
 
 // The checks shared by the options of every subcommand (so options added later get them too):
 // a seed or count is a whole number from 0 to `max` ("-1" is refused, not wrapped to 2^64 - 1,
-// and 2^64 not saturated to it), a duration a number above 0, each refused with a short message.
+// and 2^64 not saturated to it), a duration a number above 0, each refused with a short message
+// saying what the value given is not, with readable bounds ("--still: '-1' is not a time in
+// seconds, 0 or above"); nan and inf are no number.
 CLI::Option* whole_number(CLI::Option* option, std::uint64_t max = UINT64_MAX);
+CLI::Option* number_check(CLI::Option* option, const std::function<bool(double)>& ok, const std::string& wanted);
 CLI::Option* positive_number(CLI::Option* option);
+CLI::Option* seconds_number(CLI::Option* option);
+CLI::Option* number_from_to(CLI::Option* option, double lo, double hi);
+// --transcript-format: auto, tsv, textgrid or json (text::parse_transcript_format's message).
+CLI::Option* transcript_format_check(CLI::Option* option);
 
 // The most --jobs a command takes: far above any machine's cores, far below what would make
 // thousands of threads.
 inline constexpr std::uint64_t kMaxJobs = 1024;
 
 // check_output_file (engine/core/files.h) for each output that is given: its kind, extension
-// and folder, before any work.
+// and folder, before any work. A wrong extension is a UsageError (check_output_extensions), the
+// rest, which depends on the file system, an Error.
 struct OutputSpec {
   std::string option;  // "-o"
   std::string path;    // "" = not given
   std::vector<std::string> extensions;
 };
 void check_outputs(const std::vector<OutputSpec>& outputs);
+// Only the extensions, from the command line's text: each subcommand calls it first, before it
+// reads any file. `hint` is added to the message.
+void check_output_extensions(const std::vector<OutputSpec>& outputs, const std::string& hint = "");
 
 // The extensions of each kind of output, spelled once.
 extern const std::vector<std::string> kJsonExtensions;   // .json

@@ -20,6 +20,7 @@ struct ConvertArgs {
 void run_convert(ConvertArgs& a) {
   if (!a.options.skeleton.empty() && !is_npz_path(a.in))
     throw UsageError("convert: --skeleton gives an .npz input its bones; " + a.in + " is not an .npz");
+  check_output_extensions({{"OUT", a.out, kMotionWriteExtensions}});
   a.options.floats = *enum_from_name(kNpzFloatsNames, a.floats);
   const ConvertSummary s = motion_convert(a.in, a.out, a.options);
   for (const std::string& n : s.notes) std::cerr << "gmg: note: " << n << "\n";

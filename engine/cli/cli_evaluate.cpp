@@ -31,6 +31,7 @@ void run_evaluate(EvaluateArgs& a) {
                                    {"--reference", in.reference}};
   for (const std::string& o : in.other_audio) inputs.push_back({"--other-audio", o});
   if (!in.other_audio.empty() && in.audio.empty()) throw UsageError("--other-audio needs --audio");
+  check_output_extensions({{"-o", a.output, kJsonExtensions}, {"--plot", in.plot, kPlotExtensions}});
   check_outputs_apart({{"-o", a.output}, {"--plot", in.plot}}, inputs);
   check_outputs({{"-o", a.output, kJsonExtensions}, {"--plot", in.plot, kPlotExtensions}});
   OutputTransaction outputs;  // the plot and the JSON, both or neither
@@ -61,7 +62,7 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--hellinger", a->bins, "speed histogram bins: overflow (ours) or genea")
       ->check(CLI::IsMember({"overflow", "genea"}))
       ->capture_default_str();
-  cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s")
+  positive_number(cmd->add_option("--hist-width", a->options.metrics.hist_bin_width, "histogram bin width, cm/s"))
       ->capture_default_str();
   cmd->add_option("--plot", in.plot, "draw speeds, onset strength, onsets and junctions over time (.png or .svg)");
   cmd->add_flag("--json", a->json, "print one JSON object on standard output");

@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/json.h"
+#include "engine/core/limits.h"
 #include "graph/graph_io.h"
 #include "graph/reference_facts.h"
 #include "graph/stats.h"
@@ -34,9 +35,13 @@ std::pair<int, int> parse_range(const std::string& text) {
   auto end = [&](const std::string& part, int missing) {
     if (part.empty()) return missing;
     const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (!digits || part.size() > 9)
-      throw UsageError("--frames: '" + part + "' in '" + text + "' is not a frame number (0 or above)");
-    return std::stoi(part);
+    if (!digits)
+      throw UsageError("--frames: '" + part + "' in '" + text + "' is not a frame number (a whole number, 0 or above)");
+    const std::size_t first = std::min(part.find_first_not_of('0'), part.size() - 1);  // "007" is 7
+    if (part.size() - first > 9 || std::stoi(part.substr(first)) > limits::kMaxFrames)
+      throw UsageError("--frames: " + part + " in '" + text + "' is beyond the " + std::to_string(limits::kMaxFrames) +
+                       " frames a graph can have");
+    return std::stoi(part.substr(first));
   };
   const int from = end(text.substr(0, colon), 0), to = end(text.substr(colon + 1), -1);
   if (to >= 0 && from >= to)
@@ -82,6 +87,7 @@ std::vector<Count> counts(const MotionGraph& g) {
 
 void run_inspect(const InspectArgs& a) {
   auto [from, to] = parse_range(a.frames);
+  check_output_extensions({{"--dot", a.dot, {".dot", ".gv"}}, {"--graphml", a.graphml, {".graphml", ".xml"}}});
   check_outputs_apart({{"--dot", a.dot}, {"--graphml", a.graphml}}, {{"graph", a.graph}});
   check_outputs({{"--dot", a.dot, {".dot", ".gv"}}, {"--graphml", a.graphml, {".graphml", ".xml"}}});
   OutputTransaction outputs;

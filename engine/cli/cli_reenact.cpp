@@ -25,6 +25,8 @@ struct ReenactArgs {
 void run_reenact(const ReenactArgs& a) {
   if (a.graph.empty() == a.ref_motion.empty())
     throw UsageError("reenact: give either --graph or --reference-motion with --reference-audio");
+  if (a.graph.empty() && a.ref_audio.empty()) throw UsageError("reenact: --reference-motion needs --reference-audio");
+  check_output_extensions({{"-o", a.output, kMotionWriteExtensions}, {"--report", a.report, kJsonExtensions}});
   const Config cfg = a.config.make();
   std::vector<NamedFile> inputs = {{"--graph", a.graph},
                                    {"--reference-motion", a.ref_motion},
@@ -35,7 +37,6 @@ void run_reenact(const ReenactArgs& a) {
                                    {"--skeleton", a.skeleton},
                                    {"--betas", a.betas}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
-  if (a.graph.empty() && a.ref_audio.empty()) throw UsageError("reenact: --reference-motion needs --reference-audio");
   check_outputs_apart({{"-o", a.output}, {"--report", a.report}}, inputs);
   check_outputs({{"-o", a.output, kMotionWriteExtensions}, {"--report", a.report, kJsonExtensions}});
   // Read first: a bad file stops the command before the long work.
@@ -83,7 +84,8 @@ void add_reenact_command(CLI::App& app) {
   cmd->add_option("--reference-transcript", a->ref_transcript, "the reference's transcript (optional)");
   cmd->add_option("--audio", a->audio, "the new speech (WAV, FLAC, MP3, OGG, M4A, ...)")->required();
   cmd->add_option("--transcript", a->transcript, "its transcript (.tsv, .TextGrid, .json; optional)");
-  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
+  transcript_format_check(
+      cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)"));
   cmd->add_option("--tier", a->tier, "TextGrid tier of the words (default: 'words', else the only interval tier)");
   cmd->add_option("--skeleton", a->skeleton, "BVH whose hierarchy gives an .npz --reference-motion its skeleton");
   cmd->add_option("--betas", a->betas,

@@ -39,6 +39,11 @@ void parse_size(const std::string& text, render::RenderOptions& o) {
 
 void run_render(RenderArgs& a) {
   const auto start = std::chrono::steady_clock::now();
+  if (a.still)
+    check_output_extensions({{"-o", a.inputs.output, {".png"}}}, " (--still draws one frame as a .png)");
+  else
+    check_output_extensions({{"-o", a.inputs.output, render::kVideoExtensions}},
+                            ends_with_ci(a.inputs.output, ".png") ? " (a .png is one frame: --still SECONDS)" : "");
   a.options.view = render::parse_view(a.view);
   parse_size(a.size, a.options);
   a.inputs.transcript_format = text::parse_transcript_format(a.format);
@@ -74,7 +79,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--skeleton", in.skeleton, "BVH whose hierarchy gives .npz motions their skeleton");
   cmd->add_option("--audio", in.audio, "the speech (WAV, FLAC, MP3, ...), muxed into the video");
   cmd->add_option("--transcript", in.transcript, "its transcript (.tsv, .TextGrid, .json): captions");
-  cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)");
+  transcript_format_check(
+      cmd->add_option("--transcript-format", a->format, "auto, tsv, textgrid or json (Google, Whisper, WhisperX)"));
   cmd->add_option("--tier", in.tier, "TextGrid tier of the captions (default: 'words', else the only interval tier)");
   cmd->add_option("--report", in.report, "the reenactment report: mark path junctions (and onsets, with --audio)");
   cmd->add_option("--compare", in.compare, "a second motion drawn beside the first, same camera (e.g. the truth)");
@@ -83,11 +89,9 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--size", a->size, "pixels per figure, WIDTHxHEIGHT (even)")->capture_default_str();
   cmd->add_option("--ffmpeg", a->options.ffmpeg, "the ffmpeg tool")->capture_default_str();
-  cmd->add_option("--from", a->from, "draw from this time on (seconds; the audio is cut to the range)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--to", a->to, "draw up to this time (seconds)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--still", a->still, "draw only the frame at this time (seconds) into a .png -o")
-      ->check(CLI::NonNegativeNumber);
+  seconds_number(cmd->add_option("--from", a->from, "draw from this time on (seconds; the audio is cut to the range)"));
+  seconds_number(cmd->add_option("--to", a->to, "draw up to this time (seconds)"));
+  seconds_number(cmd->add_option("--still", a->still, "draw only the frame at this time (seconds) into a .png -o"));
   cmd->add_option("--overlay", a->overlay,
                   "what is drawn over the figures: all (event strip and badges with --report, labels), strip (no "
                   "badges) or none (the figures only)")

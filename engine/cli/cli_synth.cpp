@@ -50,7 +50,7 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--stem", a->stem, "file name stem");
   positive_number(cmd->add_option("--duration", a->spec.duration_s, "seconds"));
   whole_number(cmd->add_option("--seed", a->spec.seed, "seed"));
-  cmd->add_option("--style", a->spec.style, "speaker style 0..1")->check(CLI::Range(0.0, 1.0));
+  number_from_to(cmd->add_option("--style", a->spec.style, "speaker style 0..1"), 0, 1);
   whole_number(cmd->add_option("--joints", a->spec.joint_count_hint, "joint count hint (0 = default skeleton)"),
                limits::kMaxJoints);
   cmd->add_flag("--no-motion", a->no_motion, "write only the speech (WAV + TSV), as a test input");

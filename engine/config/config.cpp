@@ -22,7 +22,7 @@ double parse_double(const std::string& key, const std::string& v) {
   double out = 0.0;
   const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
   if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(out))
-    throw Error("config key '" + key + "': '" + v + "' is not a finite number");
+    throw Error("config key '" + key + "': '" + shorten_for_message(v) + "' is not a finite number");
   return out;
 }
 
@@ -34,7 +34,7 @@ T parse_whole(const std::string& key, const std::string& v, T lo, T hi) {
   if (r.ptr != v.data() + v.size() || (r.ec != std::errc() && r.ec != std::errc::result_out_of_range)) {
     if (std::is_unsigned<T>::value && !v.empty() && v[0] == '-')
       throw Error("config key '" + key + "': must not be negative");
-    throw Error("config key '" + key + "': '" + v + "' is not a whole number");
+    throw Error("config key '" + key + "': '" + shorten_for_message(v) + "' is not a whole number");
   }
   if (r.ec == std::errc::result_out_of_range || out < lo || out > hi)
     throw Error("config key '" + key + "': " + v + " is out of range (" + std::to_string(lo) + " to " +
@@ -45,18 +45,29 @@ T parse_whole(const std::string& key, const std::string& v, T lo, T hi) {
 bool parse_bool(const std::string& key, const std::string& v) {
   if (v == "true" || v == "1" || v == "on" || v == "yes") return true;
   if (v == "false" || v == "0" || v == "off" || v == "no") return false;
-  throw Error("config key '" + key + "': '" + v + "' is not true or false");
+  throw Error("config key '" + key + "': '" + shorten_for_message(v) + "' is not true or false");
 }
 
 // The shortest text that reads back as exactly v, so `gmg config --keys` shows 0.2, not
 // 0.20000000000000001, and config_to_json (which parses it back) keeps every bit.
 std::string format_double(double v) { return format_number(v); }
 
+// What a key's value is, for the JSON types a config file may give it.
+enum class KeyKind {
+  Number,   // a JSON number
+  Whole,    // a JSON number with a whole value (4.0 is read as 4)
+  Bool,     // true or false
+  Text,     // a string (a file name)
+  Choice,   // a string naming one of the mode's values
+  Numbers,  // an array of numbers (w_full)
+  Texts,    // an array of strings (lock_joints)
+};
+
 struct Accessor {
   ConfigKey key;
   std::function<void(Config&, const std::string&)> set;
   std::function<std::string(const Config&)> get;
-  bool whole = false;  // the value is a whole number (a JSON 4.0 is read as 4)
+  KeyKind kind = KeyKind::Number;
 };
 
 // The text of a number key's range, added to its help ("[1 to 1000]").
@@ -95,19 +106,21 @@ Accessor int_key(const char* name, const char* help, T Config::*group, int(T::*f
   return {{name, help + range_text(lo, hi)},
           [=](Config& c, const std::string& v) { (c.*group).*field = parse_whole<int>(name, v, lo, hi); },
           [=](const Config& c) { return std::to_string((c.*group).*field); },
-          true};
+          KeyKind::Whole};
 }
 template <typename T>
 Accessor bool_key(const char* name, const char* help, T Config::*group, bool(T::*field)) {
   return {{name, help},
           [=](Config& c, const std::string& v) { (c.*group).*field = parse_bool(name, v); },
-          [=](const Config& c) { return std::string((c.*group).*field ? "true" : "false"); }};
+          [=](const Config& c) { return std::string((c.*group).*field ? "true" : "false"); },
+          KeyKind::Bool};
 }
 template <typename T>
 Accessor string_key(const char* name, const char* help, T Config::*group, std::string(T::*field)) {
   return {{name, help},
           [=](Config& c, const std::string& v) { (c.*group).*field = v; },
-          [=](const Config& c) { return (c.*group).*field; }};
+          [=](const Config& c) { return (c.*group).*field; },
+          KeyKind::Text};
 }
 
 // A mode chosen by name from the enum's table (engine/core/enum_names.h).
@@ -119,12 +132,13 @@ Accessor enum_key(const char* name, const char* help, T Config::*group, E(T::*fi
             if (!e) {
               std::vector<std::string> names;
               for (const EnumName<E>& n : table) names.emplace_back(n.name);
-              throw Error(std::string("config key '") + name + "': '" + v + "' is not " + enum_choices(table) +
-                          did_you_mean(v, names));
+              throw Error(std::string("config key '") + name + "': '" + shorten_for_message(v) + "' is not " +
+                          enum_choices(table) + did_you_mean(v, names));
             }
             (c.*group).*field = *e;
           },
-          [=, &table](const Config& c) { return std::string(enum_name(table, (c.*group).*field)); }};
+          [=, &table](const Config& c) { return std::string(enum_name(table, (c.*group).*field)); },
+          KeyKind::Choice};
 }
 
 // One table of every key, in the order `gmg config` prints them: its length is the number of
@@ -180,7 +194,8 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
          std::string s;
          for (double w : c.search.w_full) s += (s.empty() ? "" : ",") + format_double(w);
          return s;
-       }},
+       },
+       KeyKind::Numbers},
       int_key("retries", "retries with new start nodes before a fallback", &Config::search, &SearchParams::retries, 0,
               100),
       bounded_number_key("max_length_factor", "beam search stops after this times l_sub extensions", &Config::search,
@@ -281,7 +296,8 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
          std::string s;
          for (const std::string& j : c.cleanup.lock_joints) s += (s.empty() ? "" : ",") + j;
          return s;
-       }},
+       },
+       KeyKind::Texts},
       int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup,
               &CleanupParams::smooth_window, 3, 255),
       int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order, 0, 15),
@@ -290,7 +306,7 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
          c.seed = parse_whole<std::uint64_t>("seed", v, 0, std::numeric_limits<std::uint64_t>::max());
        },
        [](const Config& c) { return std::to_string(c.seed); },
-       true},
+       KeyKind::Whole},
   };
   return table;
 }
@@ -301,7 +317,8 @@ const Accessor& find_accessor(const std::string& key) {
   std::vector<std::string> names;
   for (const Accessor& a : accessors()) names.push_back(a.key.name);
   const std::string near = did_you_mean(key, names);
-  throw Error("unknown config key '" + key + "'" + (near.empty() ? " (run 'gmg config --keys' for the list)" : near));
+  throw Error("unknown config key '" + shorten_for_message(key) + "'" +
+              (near.empty() ? " (run 'gmg config --keys' for the list)" : near));
 }
 
 }  // namespace
@@ -321,7 +338,8 @@ void config_set(Config& config, const std::string& key, const std::string& value
 
 void config_set_assignment(Config& config, const std::string& assignment) {
   const std::size_t eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0) throw Error("--set expects key=value, got '" + assignment + "'");
+  if (eq == std::string::npos || eq == 0)
+    throw Error("--set expects key=value, got '" + shorten_for_message(assignment) + "'");
   config_set(config, assignment.substr(0, eq), assignment.substr(eq + 1));
 }
 
@@ -329,10 +347,48 @@ std::string config_get(const Config& config, const std::string& key) { return fi
 
 namespace {
 
-// The text config_set expects for a JSON value: a string as is, an array as a comma-separated
-// list, a number of a whole-number key with an integral value as that integer (config_to_json
-// writes every number as a JSON double, e.g. 4.0), anything else as JSON.
-std::string json_value_text(const std::string& key, const nlohmann::json& v) {
+// "a string (\"3\")": a JSON value's type, and the value itself when short, for a message.
+std::string json_type_text(const nlohmann::json& v) {
+  const char* type = v.is_string()    ? "a string"
+                     : v.is_array()   ? "an array"
+                     : v.is_object()  ? "an object"
+                     : v.is_boolean() ? "true or false"
+                     : v.is_null()    ? "null"
+                                      : "a number";
+  return std::string(type) + " (" + shorten_for_message(json_dump(v, -1)) + ")";
+}
+
+// What a key of `kind` needs from JSON, or nullptr when v is of that type.
+const char* json_type_problem(KeyKind kind, const nlohmann::json& v) {
+  switch (kind) {
+    case KeyKind::Number:
+    case KeyKind::Whole:
+      return v.is_number() ? nullptr : "a number";
+    case KeyKind::Bool:
+      return v.is_boolean() ? nullptr : "true or false";
+    case KeyKind::Text:
+    case KeyKind::Choice:
+      return v.is_string() ? nullptr : "a string";
+    case KeyKind::Numbers:
+      return v.is_array() && std::all_of(v.begin(), v.end(), [](const nlohmann::json& x) { return x.is_number(); })
+                 ? nullptr
+                 : "an array of numbers";
+    case KeyKind::Texts:
+      return v.is_array() && std::all_of(v.begin(), v.end(), [](const nlohmann::json& x) { return x.is_string(); })
+                 ? nullptr
+                 : "an array of strings";
+  }
+  return nullptr;
+}
+
+// The text config_set expects for a JSON value of the type its key takes (gmg::Error naming the
+// key and both types otherwise: "3" for a number would read as the number, [0.3] as 0.3, and a
+// file that says something else than it means should not work by accident): a string as is, an
+// array as a comma-separated list, a number of a whole-number key with an integral value as that
+// integer (config_to_json writes every number as a JSON double, e.g. 4.0), anything else as JSON.
+std::string json_value_text(const Accessor& a, const nlohmann::json& v) {
+  if (const char* wanted = json_type_problem(a.kind, v))
+    throw Error("config key '" + a.key.name + "': expected " + wanted + ", got " + json_type_text(v));
   if (v.is_string()) return v.get<std::string>();
   if (v.is_array()) {
     std::string text;
@@ -340,11 +396,9 @@ std::string json_value_text(const std::string& key, const nlohmann::json& v) {
       text += (text.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>() : json_dump(item, -1));
     return text;
   }
-  if (v.is_number_float()) {
+  if (v.is_number_float() && a.kind == KeyKind::Whole) {
     const double d = v.get<double>();
-    const bool whole_key = std::any_of(accessors().begin(), accessors().end(),
-                                       [&](const Accessor& a) { return a.key.name == key && a.whole; });
-    if (whole_key && std::trunc(d) == d && std::abs(d) < 9007199254740992.0)  // 2^53: every integer exact
+    if (std::trunc(d) == d && std::abs(d) < 9007199254740992.0)  // 2^53: every integer exact
       return std::to_string(static_cast<long long>(d));
   }
   return json_dump(v, -1);
@@ -361,7 +415,8 @@ void config_load_text(Config& config, const std::string& text, const std::string
   if (!j.is_object()) throw Error(path + ": a config file must be a JSON object of \"key\": value");
   for (auto it = j.begin(); it != j.end(); ++it) {
     try {
-      config_set(config, it.key(), json_value_text(it.key(), it.value()));
+      const Accessor& a = find_accessor(it.key());
+      a.set(config, json_value_text(a, it.value()));
     } catch (const Error& e) {
       throw Error(path + ": " + e.what());
     }

@@ -50,7 +50,11 @@ void config_set_assignment(Config& config, const std::string& assignment);
 // Value of a key as text.
 std::string config_get(const Config& config, const std::string& key);
 
-// Reads a JSON object of key: value pairs into config. Errors name the file.
+// Reads a JSON object of key: value pairs into config. Each value must have its key's JSON type,
+// the one config_to_json writes: a number (a whole one for a whole-number key), true or false, a
+// string (a file name or a mode), an array of numbers (w_full) or of strings (lock_joints); "3"
+// for a number or [0.3] for one value is an error naming the key. Errors name the file, and quote
+// a long key or value cut to its first 60 bytes.
 void config_load_file(Config& config, const std::string& path);
 
 // The same for JSON text already in memory; `name` labels errors.

@@ -236,6 +236,8 @@ std::optional<std::string> nearest_name(std::string_view word, const std::vector
   std::size_t best_distance = 3;
   for (const std::string& name : names) {
     if (name == word) return std::nullopt;
+    const std::size_t longer = std::max(name.size(), word.size()), shorter = std::min(name.size(), word.size());
+    if (longer - shorter >= best_distance) continue;  // the distance is at least the difference in length
     const std::size_t d = edit_distance(lower, ascii_lower(name));
     if (d < best_distance && 2 * d < word.size()) {
       best = name;
@@ -248,6 +250,13 @@ std::optional<std::string> nearest_name(std::string_view word, const std::vector
 std::string did_you_mean(std::string_view word, const std::vector<std::string>& names) {
   const std::optional<std::string> near = nearest_name(word, names);
   return near ? " (did you mean '" + *near + "'?)" : std::string();
+}
+
+std::string shorten_for_message(std::string_view s, std::size_t max_bytes) {
+  if (s.size() <= max_bytes) return std::string(s);
+  std::size_t cut = max_bytes;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // a continuation byte
+  return std::string(s.substr(0, cut)) + "\u2026";
 }
 
 }  // namespace gmg

@@ -81,6 +81,11 @@ std::string to_valid_utf8(std::string_view s);
 // itself. Printable ASCII and well-formed UTF-8 text stay as they are.
 std::string escape_nonprintable(std::string_view s);
 
+// s when it is at most `max_bytes` long, else its first max_bytes bytes (cut back to the start of
+// a UTF-8 character) and "…": a value quoted in a message stays one readable line, however long
+// the input that holds it (a 10 MB key of a config file).
+std::string shorten_for_message(std::string_view s, std::size_t max_bytes = 60);
+
 // The optimal-string-alignment distance of a and b: insertions, deletions, substitutions and
 // swaps of two neighbouring characters each count 1 ("biuld" is 1 from "build"). Byte-wise.
 std::size_t edit_distance(std::string_view a, std::string_view b);
@@ -88,6 +93,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 // The name of `names` nearest to `word` (edit_distance of their ASCII lower case) when it is a
 // plausible typo: at most 2 edits, and fewer than half of word's length (so "-x" suggests
 // nothing); the first of equally near names. nullopt when none is, or when word is one of names.
+// Names whose length differs from word's by more than 2 are not compared (they cannot be near),
+// so the time is linear in a long word's length.
 std::optional<std::string> nearest_name(std::string_view word, const std::vector<std::string>& names);
 
 // " (did you mean 'build'?)" for nearest_name(word, names), or "" when there is none: the tail

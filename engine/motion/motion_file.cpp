@@ -35,7 +35,7 @@ Motion motion_read(const std::string& path, const std::string& skeleton_template
                 "template, a BVH of the same joints (--skeleton template.bvh)");
   if (is_npz_path(skeleton_template))
     throw Error(skeleton_template + ": a skeleton template must be a BVH file, not an .npz");
-  return npz_read(path, bvh_read(skeleton_template).skeleton, out_body);
+  return npz_read(path, bvh_read(skeleton_template).skeleton, out_body, skeleton_template);
 }
 
 const std::vector<std::string> kMotionWriteExtensions = {".bvh", ".npz"};

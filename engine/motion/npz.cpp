@@ -149,8 +149,10 @@ const std::vector<std::string>& smplx_joint_names() {
   return names;
 }
 
-Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton, SmplxBody* out_body) {
-  if (skeleton.joint_count() == 0) throw Error(name + ": the skeleton template has no joints");
+Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton, SmplxBody* out_body,
+                 const std::string& template_name) {
+  const std::string templ = "the skeleton template" + (template_name.empty() ? "" : " " + template_name);
+  if (skeleton.joint_count() == 0) throw Error(name + ": " + templ + " has no joints");
   const ZipReader zip(bytes, name);
   for (const char* key : {"poses", "trans"})
     if (!zip.has(std::string(key) + ".npy")) missing_array(zip, key, name);
@@ -171,7 +173,7 @@ Motion npz_parse(const std::string& bytes, const std::string& name, const Skelet
   check_finite(trans, 3, trans_name);
   const std::vector<int> map = joint_mapping(skeleton, joints);
   if (map.empty())
-    throw Error(poses_name + ": " + std::to_string(joints) + " joints a frame, but the skeleton template has " +
+    throw Error(poses_name + ": " + std::to_string(joints) + " joints a frame, but " + templ + " has " +
                 std::to_string(skeleton.joint_count()) + " joints" +
                 (joints == kSmplxJoints ? " and not all 55 SMPL-X joint names" : ""));
 
@@ -191,8 +193,9 @@ Motion npz_parse(const std::string& bytes, const std::string& name, const Skelet
   return m;
 }
 
-Motion npz_read(const std::string& path, const Skeleton& skeleton, SmplxBody* out_body) {
-  return npz_parse(read_file_bytes(path), path, skeleton, out_body);
+Motion npz_read(const std::string& path, const Skeleton& skeleton, SmplxBody* out_body,
+                const std::string& template_name) {
+  return npz_parse(read_file_bytes(path), path, skeleton, out_body, template_name);
 }
 
 std::string npz_format(const Motion& m, const std::string& name, const SmplxBody& body, NpzFloats floats) {

@@ -77,12 +77,14 @@ glm::dvec3 npz_root_rest(const Skeleton& skeleton);
 // the template, a value that is not finite, a frame rate that is not positive, zero frames.
 // With out_body, the body's arrays are read too (each optional; `expressions` must have the
 // poses' frame count, every value finite; all-zero expressions or betas, as written for a motion
-// without a face or shape, are none).
+// without a face or shape, are none). `template_name` (the template's file, when it has one)
+// names the template in the errors about it.
 Motion npz_parse(const std::string& bytes, const std::string& name, const Skeleton& skeleton,
-                 SmplxBody* out_body = nullptr);
+                 SmplxBody* out_body = nullptr, const std::string& template_name = "");
 
 // Reads an .npz file (npz_parse).
-Motion npz_read(const std::string& path, const Skeleton& skeleton, SmplxBody* out_body = nullptr);
+Motion npz_read(const std::string& path, const Skeleton& skeleton, SmplxBody* out_body = nullptr,
+                const std::string& template_name = "");
 
 // The archive bytes of m: `poses` (N x 3J; the SMPL-X order when the skeleton has exactly the 55
 // SMPL-X joint names, else the skeleton's order), `trans` (N x 3: the root's translation minus

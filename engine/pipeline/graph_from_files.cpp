@@ -202,7 +202,8 @@ MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Confi
                                                               static_cast<std::size_t>(c.body.expression_dims))
       throw Error(c.name + ": the face does not have the motion's " + std::to_string(c.motion.frame_count) + " frames");
     inputs.push_back(naming_memory_errors(c.name, "reading the reference clip", [&] {
-      const SpeechTimes times = speech_times_of(c.sound, c.has_words ? &c.words : nullptr, c.name, config.graph);
+      const SpeechTimes times =
+          speech_times_of(c.sound, c.has_words ? &c.words : nullptr, c.name, config.graph, c.allow_silence);
       std::vector<std::string> warnings;  // the arrays' caller has them in hand: none is news
       return clip_events(std::move(c.motion), times, config, lexicon, c.name, c.name, warnings);
     }));

@@ -44,7 +44,8 @@ struct ReferenceClip {
   SmplxBody body{};  // the face must have the motion's frame count
   audio::Audio sound;
   std::vector<text::Word> words{};
-  bool has_words = false;  // false: no transcript
+  bool has_words = false;      // false: no transcript
+  bool allow_silence = false;  // as SpeechFiles::allow_silence: audio that cannot be speech is refused
 };
 
 // graph_build_from_files for clips in memory (checked with check_audio_samples, check_words,

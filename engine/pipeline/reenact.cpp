@@ -100,7 +100,8 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
 }
 
 Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
-                          const Config& config, const std::string& name, const std::string& graph_name) {
+                          const Config& config, const std::string& name, const std::string& graph_name,
+                          bool allow_silence) {
   check_lock_joints_of_graph(g, config, graph_name);
   check_audio_samples(sound, name);
   std::vector<text::Word> sorted;
@@ -110,7 +111,7 @@ Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const
   }
   const text::Lexicon lexicon = lexicon_for(config.graph);
   const SpeechEvents events =
-      speech_events(sound, words ? &sorted : nullptr, name, g.motion.fps, -1, config.graph, lexicon);
+      speech_events(sound, words ? &sorted : nullptr, name, g.motion.fps, -1, config.graph, lexicon, allow_silence);
   check_output_size(events.total_frames, g.motion.skeleton, name);
   Reenactment r = naming_memory_errors(name, "reenacting", [&] { return reenact_events(g, events, config); });
   prepend_inputs(r, {{"graph", graph_name}, {"audio", name}, {"transcript", nullptr}});

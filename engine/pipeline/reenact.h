@@ -47,9 +47,11 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
                     const std::string& graph_name);
 
 // Same, from speech in memory (words may be null: no transcript; checked with
-// check_audio_samples and check_words). `name` labels errors and the report's audio.
+// check_audio_samples and check_words, and refused as a file is when it cannot be speech unless
+// allow_silence). `name` labels errors and the report's audio.
 Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
-                          const Config& config, const std::string& name, const std::string& graph_name);
+                          const Config& config, const std::string& name, const std::string& graph_name,
+                          bool allow_silence = false);
 
 // Same, from events already analysed.
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);

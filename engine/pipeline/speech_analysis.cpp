@@ -62,14 +62,26 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
 }
 
 SpeechTimes speech_times_of(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
-                            const GraphParams& params) {
-  return times_of(audio::detect_onsets(sound, onset_params_of(params)), audio::energy_track(sound), sound.duration(),
-                  words, name);
+                            const GraphParams& params, bool allow_silence) {
+  // The checks of speech_times, in its order: the cheap one before the onset analysis.
+  audio::EnergyTrack energy = audio::energy_track(sound);
+  if (!allow_silence) {
+    const std::string problem = audio::speech_level_problem(sound.duration(), energy);
+    if (!problem.empty()) throw Error(audio::speech_refusal(name, problem, {}));
+  }
+  audio::OnsetAnalysis onsets = audio::detect_onsets(sound, onset_params_of(params));
+  if (!allow_silence) {
+    const std::string problem =
+        audio::speech_onset_problem(sound.duration(), onsets.onset_frames.size(), params.min_onset_strength);
+    if (!problem.empty()) throw Error(audio::speech_refusal(name, problem, {}));
+  }
+  return times_of(std::move(onsets), std::move(energy), sound.duration(), words, name);
 }
 
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
-                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon) {
-  return speech_events_on_grid(speech_times_of(sound, words, name, params), fps, frame_count, lexicon);
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon,
+                           bool allow_silence) {
+  return speech_events_on_grid(speech_times_of(sound, words, name, params, allow_silence), fps, frame_count, lexicon);
 }
 
 void check_audio_samples(const audio::Audio& sound, const std::string& name) {

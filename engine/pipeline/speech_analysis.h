@@ -64,9 +64,10 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params);
 // The events of analysed speech on a grid of `fps` (frame_count as for speech_analyse).
 SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int frame_count, const text::Lexicon& lexicon);
 
-// Analyses speech in memory (words may be null: no transcript); `name` labels errors.
+// Analyses speech in memory (words may be null: no transcript); `name` labels errors. Without
+// allow_silence, audio that cannot be speech is refused as speech_times refuses a file's.
 SpeechTimes speech_times_of(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
-                            const GraphParams& params);
+                            const GraphParams& params, bool allow_silence = true);
 
 // Audio given in memory, checked as the readers check a file's: gmg::Error "name: ..." for a
 // sample rate outside engine/core/limits.h, no samples, more than a day, or a value that is not
@@ -78,9 +79,11 @@ void check_audio_samples(const audio::Audio& sound, const std::string& name);
 void check_words(std::vector<text::Word>& words, const std::string& name);
 
 // Same as speech_analyse, from audio and words already in memory (words may be null: no
-// transcript). `name` labels errors (the transcript's file name).
+// transcript). `name` labels errors (the transcript's file name). allow_silence as for
+// speech_times_of.
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
-                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon);
+                           double fps, int frame_count, const GraphParams& params, const text::Lexicon& lexicon,
+                           bool allow_silence = true);
 
 // The lexicon named by params.keywords, or assets/keywords.txt.
 text::Lexicon lexicon_for(const GraphParams& params);

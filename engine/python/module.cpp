@@ -23,7 +23,10 @@ PYBIND11_MODULE(gmg, m) {
     } catch (const gmg::Interrupted& e) {  // a job stopped by a signal (engine/core/interrupt.h)
       PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const gmg::Error& e) {
-      const std::string what = e.what();
+      // The speech checks' hint names the command line's flag; from Python it is the argument.
+      std::string what = e.what();
+      const std::string flag = "--allow-silence", argument = "allow_silence=True";
+      if (const std::size_t at = what.find(flag); at != std::string::npos) what.replace(at, flag.size(), argument);
       PyObject* text = PyUnicode_DecodeUTF8(what.data(), static_cast<Py_ssize_t>(what.size()), "replace");
       PyErr_SetObject(error->ptr(), text);
       Py_XDECREF(text);

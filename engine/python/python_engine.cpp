@@ -5,6 +5,7 @@
 
 #include "audio/audio_file.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/evaluate/evaluate_files.h"
 #include "engine/motion/motion_file.h"
@@ -19,21 +20,32 @@ namespace {
 // memory when any part is an array or a gmg.Motion.
 struct ClipArgs {
   py::object motion, audio, transcript, skeleton, sample_rate, words, tier;
+  bool allow_silence = false;
 };
+
+// A transcript file and words= both give the words: which would win is not for gmg to guess.
+void check_one_transcript(const py::object& transcript, const py::object& words, const std::string& what) {
+  if (!transcript.is_none() && !words.is_none())
+    throw Error(what + ": give either a transcript file or words=, not both");
+}
 
 bool clip_on_files(const ClipArgs& c) { return is_path(c.motion) && is_path(c.audio) && c.words.is_none(); }
 
 std::string opt_path(const py::object& o) { return o.is_none() ? std::string() : path_of(o); }
-std::string opt_text(const py::object& o) { return o.is_none() ? std::string() : o.cast<std::string>(); }
+std::string opt_text(const py::object& o, const std::string& what) {
+  return o.is_none() ? std::string() : text_of(o, what);
+}
 
 ReferenceFiles files_of(const ClipArgs& c, text::TranscriptFormat format) {
-  return {
-      path_of(c.motion), {path_of(c.audio), opt_path(c.transcript), format, opt_text(c.tier)}, opt_path(c.skeleton)};
+  return {path_of(c.motion),
+          {path_of(c.audio), opt_path(c.transcript), format, opt_text(c.tier, "tier"), c.allow_silence},
+          opt_path(c.skeleton)};
 }
 
 // The clip in memory: arrays taken as they are, files read as graph_build_from_files reads them.
 ReferenceClip clip_in_memory(const ClipArgs& c, text::TranscriptFormat format) {
   ReferenceClip out;
+  out.allow_silence = c.allow_silence;
   if (py::isinstance<PyMotion>(c.motion)) {
     const PyMotion& m = c.motion.cast<const PyMotion&>();
     out.name = m.name.empty() ? std::string("motion") : m.name;
@@ -56,7 +68,7 @@ ReferenceClip clip_in_memory(const ClipArgs& c, text::TranscriptFormat format) {
     out.words = words_of(c.words);
     out.has_words = true;
   } else if (!c.transcript.is_none()) {
-    const std::string path = path_of(c.transcript), tier = opt_text(c.tier);
+    const std::string path = path_of(c.transcript), tier = opt_text(c.tier, "tier");
     const py::gil_scoped_release release;
     out.words = text::read_transcript(path, format, tier);
     out.has_words = true;
@@ -64,8 +76,13 @@ ReferenceClip clip_in_memory(const ClipArgs& c, text::TranscriptFormat format) {
   return out;
 }
 
-ClipArgs clip_from_dict(const py::dict& d) {
+ClipArgs clip_from_dict(const py::handle& item, bool allow_silence) {
+  if (!py::isinstance<py::dict>(item))
+    throw Error("clips: expected a dict per clip (motion=, audio=, ...), got " +
+                py::str(py::type::handle_of(item).attr("__name__")).cast<std::string>());
+  const auto d = py::reinterpret_borrow<py::dict>(item);
   ClipArgs c;
+  c.allow_silence = allow_silence;
   for (const auto& [key, value] : d) {
     const std::string k = py::str(key).cast<std::string>();
     py::object v = py::reinterpret_borrow<py::object>(value);
@@ -89,6 +106,7 @@ ClipArgs clip_from_dict(const py::dict& d) {
   for (py::object* o : {&c.motion, &c.audio, &c.transcript, &c.skeleton, &c.sample_rate, &c.words, &c.tier})
     if (!*o) *o = py::none();
   if (c.motion.is_none() || c.audio.is_none()) throw Error("clips: every clip needs motion and audio");
+  check_one_transcript(c.transcript, c.words, "clips");
   return c;
 }
 
@@ -97,15 +115,16 @@ ClipArgs clip_from_dict(const py::dict& d) {
 PyGraph build(const py::object& motion, const py::object& audio, const py::object& transcript, const py::object& clips,
               const py::object& skeleton, const py::object& sample_rate, const py::object& words,
               const py::object& tier, const std::string& transcript_format, const py::object& config,
-              const py::object& set, int jobs) {
+              const py::object& set, int jobs, bool allow_silence) {
   std::vector<ClipArgs> args;
   if (!clips.is_none()) {
     if (!motion.is_none() || !audio.is_none())
       throw Error("build: give either clips= or motion= with audio=, not both");
-    for (const py::handle& c : clips) args.push_back(clip_from_dict(c.cast<py::dict>()));
+    for (const py::handle& c : clips) args.push_back(clip_from_dict(c, allow_silence));
   } else {
     if (motion.is_none() || audio.is_none()) throw Error("build: give motion= and audio= (or clips=)");
-    args.push_back({motion, audio, transcript, skeleton, sample_rate, words, tier});
+    check_one_transcript(transcript, words, "build");
+    args.push_back({motion, audio, transcript, skeleton, sample_rate, words, tier, allow_silence});
   }
   if (args.empty()) throw Error("build: no reference clip given");
   const Config cfg = config_of(config, set, py::none());
@@ -150,7 +169,8 @@ PyGraph graph_arg(const py::object& graph) {
 PyReenactment reenact(const py::object& graph, const py::object& audio, const py::object& transcript,
                       const py::object& sample_rate, const py::object& words, const std::string& transcript_format,
                       const py::object& tier, const py::object& seed, const py::object& config, const py::object& set,
-                      const py::object& betas, const py::object& name) {
+                      const py::object& betas, const py::object& name, bool allow_silence) {
+  check_one_transcript(transcript, words, "reenact");
   const PyGraph g = graph_arg(graph);
   const Config cfg = config_of(config, set, seed);
   const text::TranscriptFormat format = text::parse_transcript_format(transcript_format);
@@ -162,6 +182,7 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
       shape_from = path_of(betas);
       shape = read_betas_file(shape_from);
     } else {
+      check_real_numbers(betas, "betas");
       const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(betas);
       if (!a || a.ndim() != 1 || a.size() == 0) throw Error("betas: expected a 1-D array or the path of a file");
       shape.assign(a.data(), a.data() + a.size());
@@ -171,12 +192,12 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
   Reenactment r;
   std::string label;
   if (is_path(audio) && words.is_none()) {
-    const SpeechFiles speech{path_of(audio), opt_path(transcript), format, opt_text(tier)};
+    const SpeechFiles speech{path_of(audio), opt_path(transcript), format, opt_text(tier, "tier"), allow_silence};
     label = speech.audio;
     const py::gil_scoped_release release;
     r = gmg::reenact(*g.graph, speech, cfg, g.name);
   } else {
-    label = name.is_none() ? (is_path(audio) ? path_of(audio) : std::string("audio")) : name.cast<std::string>();
+    label = name.is_none() ? (is_path(audio) ? path_of(audio) : std::string("audio")) : text_of(name, "name");
     audio::Audio sound;
     if (is_path(audio)) {
       const std::string path = path_of(audio);
@@ -190,12 +211,12 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
     if (!words.is_none()) {
       w = words_of(words);
     } else if (!transcript.is_none()) {
-      const std::string path = path_of(transcript), t = opt_text(tier);
+      const std::string path = path_of(transcript), t = opt_text(tier, "tier");
       const py::gil_scoped_release release;
       w = text::read_transcript(path, format, t);
     }
     const py::gil_scoped_release release;
-    r = reenact_audio(*g.graph, sound, has_words ? &w : nullptr, cfg, label, g.name);
+    r = reenact_audio(*g.graph, sound, has_words ? &w : nullptr, cfg, label, g.name, allow_silence);
   }
   if (!betas.is_none()) reenactment_use_betas(r, std::move(shape), shape_from);
   PyReenactment out;
@@ -228,7 +249,7 @@ Motion motion_arg(const py::object& o, const std::string& skeleton, std::string&
 py::object evaluate(const py::object& generated, const py::object& truth, const py::object& audio,
                     const py::object& sample_rate, const py::object& other_audio, const py::object& report,
                     const py::object& reference, const py::object& skeleton, bool trim, const std::string& hellinger,
-                    double hist_width, const py::object& plot) {
+                    double hist_width, const py::object& plot, bool allow_silence) {
   EvaluateOptions options;
   const auto bins = enum_from_name(kHistogramBinsNames, hellinger);
   if (!bins) throw Error("hellinger: '" + hellinger + "' is not overflow or genea");
@@ -250,6 +271,7 @@ py::object evaluate(const py::object& generated, const py::object& truth, const 
     in.report = opt_path(report);
     in.reference = opt_path(reference);
     in.trim = trim;
+    in.allow_silence = allow_silence;
     in.plot = opt_path(plot);
     const py::gil_scoped_release release;
     result = evaluate_files(in, options);
@@ -261,10 +283,12 @@ py::object evaluate(const py::object& generated, const py::object& truth, const 
       if (is_path(o)) {
         out_name = path_of(o);
         const py::gil_scoped_release release;
-        return read_evaluated_speech(out_name, false, l.warnings);  // as gmg evaluate reads it
+        return read_evaluated_speech(out_name, allow_silence, l.warnings);  // as gmg evaluate reads it
       }
       out_name = label;
-      return audio_of(o, sample_rate, label);
+      audio::Audio sound = audio_of(o, sample_rate, label);
+      check_speech_level(sound, label, allow_silence);
+      return sound;
     };
     if (!audio.is_none()) l.audio = sound_of(audio, "audio", l.audio_name);
     int k = 0;
@@ -379,6 +403,7 @@ void bind_graph(py::module_& m) {
           "save",
           [](const PyGraph& g, const py::object& path) {
             const std::string file = path_of(path);
+            check_output_file({"", file}, {".gmg"});  // as `gmg build -o g.bvh` refuses it
             const py::gil_scoped_release release;
             graph_save(file, *g.graph);
           },
@@ -422,6 +447,7 @@ void bind_reenactment(py::module_& m) {
           "write_report",
           [](const PyReenactment& r, const py::object& path) {
             const std::string file = path_of(path);
+            check_output_file({"", file}, {".json"});  // as `gmg reenact --report r.bvh` refuses it
             const py::gil_scoped_release release;
             write_json_file(file, r.report);
           },
@@ -441,30 +467,38 @@ void bind_engine(py::module_& m) {
         py::arg("transcript") = py::none(), py::kw_only(), py::arg("clips") = py::none(),
         py::arg("skeleton") = py::none(), py::arg("sample_rate") = py::none(), py::arg("words") = py::none(),
         py::arg("tier") = py::none(), py::arg("transcript_format") = "auto", py::arg("config") = py::none(),
-        py::arg("set") = py::none(), py::arg("jobs") = 1,
+        py::arg("set") = py::none(), py::arg("jobs") = 1, py::arg("allow_silence") = false,
         R"(Builds a graph from one reference clip (motion=, audio=, transcript=) or several (clips=[dict, ...]).
 
 motion: a BVH or SMPL-X .npz path (with skeleton=) or a gmg.Motion; audio: a path or samples
-(with sample_rate=); transcript: a path, or words=[(start, end, text), ...]. config: a JSON
-file's path or a dict; set: {key: value}. Files only: exactly what `gmg build` does.)");
+(with sample_rate=); transcript: a path, or words=[(start, end, text), ...] (one of the two).
+config: a JSON file's path or a dict; set: {key: value}. Audio that cannot be speech (shorter
+than 0.5 s, silent, or without an onset in more than 10 s), as a file or as samples, is an
+error unless allow_silence=True, as `gmg build --allow-silence`. Files only: exactly what
+`gmg build` does.)");
   m.def("load", load, py::arg("path"), "loads a graph file");
   m.def("reenact", reenact, py::arg("graph"), py::arg("audio"), py::arg("transcript") = py::none(), py::kw_only(),
         py::arg("sample_rate") = py::none(), py::arg("words") = py::none(), py::arg("transcript_format") = "auto",
         py::arg("tier") = py::none(), py::arg("seed") = py::none(), py::arg("config") = py::none(),
         py::arg("set") = py::none(), py::arg("betas") = py::none(), py::arg("name") = py::none(),
+        py::arg("allow_silence") = false,
         R"(Reenacts new speech from a graph (a gmg.Graph or a graph file's path).
 
-audio: a path, or samples with sample_rate= (name= labels them in errors and the report);
-transcript: a path, or words=[(start, end, text), ...]; seed, config, set as for `gmg reenact`;
+audio: a path, or samples (1-D mono or (samples, channels), real numbers) with sample_rate=
+(name= labels them in errors and the report); as a file or as samples, audio that cannot be
+speech is an error unless allow_silence=True, as `gmg reenact --allow-silence`;
+transcript: a path, or words=[(start, end, text), ...] (one of the two); seed, config, set as
+for `gmg reenact`;
 betas: an .npz/.npy path or an array, the output's body shape. From files, the motion is
 byte for byte `gmg reenact`'s with the same inputs and seed.)");
   m.def("evaluate", evaluate, py::arg("generated"), py::kw_only(), py::arg("truth") = py::none(),
         py::arg("audio") = py::none(), py::arg("sample_rate") = py::none(), py::arg("other_audio") = py::list(),
         py::arg("report") = py::none(), py::arg("reference") = py::none(), py::arg("skeleton") = py::none(),
         py::arg("trim") = false, py::arg("hellinger") = "overflow", py::arg("hist_width") = 1.0,
-        py::arg("plot") = py::none(),
+        py::arg("plot") = py::none(), py::arg("allow_silence") = false,
         R"(The metrics of `gmg evaluate` as a dict. generated/truth: paths, gmg.Motion or gmg.Reenactment
-(whose report is then used unless report= is given); audio: a path or samples (sample_rate=);
+(whose report is then used unless report= is given); audio: a path or samples (sample_rate=),
+refused when silent or too short unless allow_silence=True;
 report: a path, a dict or a Reenactment; reference: a BVH/.npz/.gmg path, a gmg.Graph or a gmg.Motion.)");
   m.def("convert", convert, py::arg("input"), py::arg("output"), py::kw_only(), py::arg("skeleton") = py::none(),
         py::arg("betas") = py::none(), py::arg("npz_dtype") = "beat2", "`gmg convert`: BVH <-> SMPL-X .npz");

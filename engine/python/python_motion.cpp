@@ -1,11 +1,14 @@
 // gmg.Motion and the conversions between Python objects and the engine's types.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include <pybind11/stl.h>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/json.h"
+#include "engine/core/limits.h"
 #include "engine/core/strings.h"
 #include "engine/motion/motion_file.h"
 #include "engine/motion/rotation.h"
@@ -24,6 +27,7 @@ std::string shape_text(const py::array& a) {
 
 // The array as doubles, C order, with exactly `shape` (-1: any size there).
 Array array_of(const py::handle& object, const std::vector<py::ssize_t>& shape, const std::string& what) {
+  check_real_numbers(object, what);
   Array a = Array::ensure(object);
   if (!a) throw Error(what + ": expected an array of numbers");
   bool ok = a.ndim() == static_cast<py::ssize_t>(shape.size());
@@ -125,6 +129,111 @@ py::object betas(const PyMotion& pm) {
 
 std::vector<double> values_of(const Array& a) { return std::vector<double>(a.data(), a.data() + a.size()); }
 
+// A frame rate as the BVH reader takes one (engine/core/limits.h).
+double fps_of(const py::handle& object, const std::string& what) {
+  if (py::isinstance<py::bool_>(object) || py::isinstance<py::str>(object))
+    throw Error(what + ": expected a number of frames per second");
+  double v = 0;
+  try {
+    v = py::float_(py::reinterpret_borrow<py::object>(object)).cast<double>();
+  } catch (const py::error_already_set&) {
+    throw Error(what + ": expected a number of frames per second");
+  }
+  if (!(v >= limits::kMinFps && v <= limits::kMaxFps))
+    throw Error(what + ": " + format_number(v) + " is outside the " + format_number(limits::kMinFps) + " to " +
+                format_number(limits::kMaxFps) + " fps gmg reads");
+  return v;
+}
+
+// Quaternion (w, x, y, z) at q, element k of a (frames, joints, 4) array, scaled to length 1 (the
+// rotation it stands for); one of length 0 stands for none and is refused. One of length 1 to
+// rounding is kept as it is, so the arrays of a motion give back that motion bit for bit.
+glm::dquat unit_quaternion(const double* q, std::size_t k, int joints) {
+  const glm::dquat v(q[0], q[1], q[2], q[3]);
+  const double norm = std::sqrt(glm::dot(v, v));
+  if (!(norm > 1e-9))
+    throw Error("rotations: the quaternion of frame " + std::to_string(k / static_cast<std::size_t>(joints)) +
+                ", joint " + std::to_string(k % static_cast<std::size_t>(joints)) + " has length 0");
+  return std::abs(norm - 1.0) <= 1e-12 ? v : v / norm;
+}
+
+// The skeleton of gmg.Motion(...): names and parents checked as the BVH reader checks a
+// hierarchy, the root with position and rotation channels and the other joints with rotations,
+// Z X Y (BEAT2's order), so a BVH written from it reads back as it.
+Skeleton skeleton_of(const py::handle& names, const py::handle& parents, const Array& offsets) {
+  if (py::isinstance<py::str>(names) || !py::isinstance<py::sequence>(names))
+    throw Error("joint_names: expected a list of str");
+  const auto count = static_cast<py::ssize_t>(py::len(names));
+  if (count < 1 || count > limits::kMaxJoints)
+    throw Error("joint_names: " + std::to_string(count) + " joints; gmg reads skeletons of 1 to " +
+                std::to_string(limits::kMaxJoints) + " joints");
+  check_real_numbers(parents, "parents");
+  if (py::isinstance<py::array>(parents) && py::reinterpret_borrow<py::array>(parents).dtype().kind() == 'f')
+    throw Error("parents: expected whole numbers (joint indices), got floats");
+  const auto p = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(parents);
+  if (!p || p.ndim() != 1 || p.shape(0) != count)
+    throw Error("parents: expected shape (" + std::to_string(count) + ",), one parent per joint name");
+  if (offsets.shape(0) != count)
+    throw Error("offsets: expected shape (" + std::to_string(count) + ", 3), one offset per joint name");
+  Skeleton sk;
+  std::vector<int> depth;
+  for (py::ssize_t j = 0; j < count; ++j) {
+    Joint joint;
+    const std::string which = "joint_names: joint " + std::to_string(j);
+    joint.name = text_of(py::reinterpret_borrow<py::sequence>(names)[static_cast<py::size_t>(j)], which);
+    if (joint.name.empty()) throw Error(which + " has no name");
+    if (std::any_of(joint.name.begin(), joint.name.end(), [](char c) { return is_ascii_space(c) || c < 0x20; }))
+      throw Error(which + ": '" + escape_nonprintable(joint.name) +
+                  "' holds a space or control character, which a BVH file cannot name");
+    if (sk.find(joint.name) >= 0) throw Error(which + ": duplicate joint name '" + joint.name + "'");
+    const long long parent = p.data()[j];
+    if (j == 0 ? parent != -1 : (parent < 0 || parent >= j))
+      throw Error("parents: joint " + std::to_string(j) + " ('" + joint.name + "') has parent " +
+                  std::to_string(parent) +
+                  (j == 0 ? "; the root's must be -1"
+                          : "; a parent comes before its child (0 to " + std::to_string(j - 1) + ")"));
+    joint.parent = static_cast<int>(parent);
+    depth.push_back(j == 0 ? 1 : depth[static_cast<std::size_t>(parent)] + 1);
+    if (depth.back() > limits::kMaxHierarchyDepth)
+      throw Error("parents: joints nested more than " + std::to_string(limits::kMaxHierarchyDepth) + " deep");
+    const double* o = offsets.data() + 3 * j;
+    joint.offset = glm::dvec3(o[0], o[1], o[2]);
+    if (j == 0) joint.channels = {Channel::Xposition, Channel::Yposition, Channel::Zposition};
+    for (Channel c : {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation}) joint.channels.push_back(c);
+    joint.rotation_order = rotation_order_from_channels(joint.channels);
+    sk.joints.push_back(std::move(joint));
+  }
+  return sk;
+}
+
+// gmg.Motion(joint_names, parents, offsets, rotations, root, fps): see its docstring.
+PyMotion motion_from_arrays(const py::object& names, const py::object& parents, const py::object& offsets,
+                            const py::object& rotations, const py::object& root, const py::object& fps,
+                            const py::object& name) {
+  const Array o = array_of(offsets, {-1, 3}, "offsets");
+  PyMotion out;
+  out.name = name.is_none() ? std::string() : text_of(name, "name");
+  const Skeleton sk = skeleton_of(names, parents, o);
+  const int joints = sk.joint_count();
+  const Array r = array_of(rotations, {-1, joints, 4}, "rotations");
+  const Array t = array_of(root, {-1, 3}, "root");
+  const py::ssize_t frames = r.shape(0);
+  if (frames < 1 || frames > limits::kMaxFrames)
+    throw Error("rotations: " + std::to_string(frames) + " frames; gmg reads 1 to " +
+                std::to_string(limits::kMaxFrames));
+  if (t.shape(0) != frames)
+    throw Error("root: " + std::to_string(t.shape(0)) + " frames, but rotations has " + std::to_string(frames));
+  out.motion = motion_rest(sk, fps_of(fps, "fps"), static_cast<int>(frames));
+  out.motion.euler_hints.clear();
+  for (std::size_t k = 0; k < out.motion.rotations.size(); ++k)
+    out.motion.rotations[k] = unit_quaternion(r.data() + 4 * k, k, joints);
+  for (int f = 0; f < out.motion.frame_count; ++f) {
+    const double* v = t.data() + static_cast<std::ptrdiff_t>(3) * f;
+    out.motion.translations[out.motion.index(f, 0)] = glm::dvec3(v[0], v[1], v[2]);
+  }
+  return out;
+}
+
 // A new motion in pm's skeleton from arrays (see the docstring of Motion.with_frames).
 PyMotion with_frames(const PyMotion& pm, const py::object& rot, const py::object& aa, const py::object& tr,
                      const py::object& root_pos, const py::object& fps, const py::object& expr, const py::object& bet) {
@@ -149,8 +258,7 @@ PyMotion with_frames(const PyMotion& pm, const py::object& rot, const py::object
   if (frames < 1) throw Error("with_frames: a motion needs at least one frame");
   PyMotion out;
   out.name = pm.name;
-  const double rate = fps.is_none() ? pm.motion.fps : fps.cast<double>();
-  if (!(rate > 0 && rate <= 1000)) throw Error("with_frames: fps must be in (0, 1000]");
+  const double rate = fps.is_none() ? pm.motion.fps : fps_of(fps, "with_frames: fps");
   out.motion = motion_rest(pm.motion.skeleton, rate, frames);
   out.motion.euler_hints.clear();
   const bool keep = frames == pm.motion.frame_count;  // unset channels keep the motion's own
@@ -160,11 +268,7 @@ PyMotion with_frames(const PyMotion& pm, const py::object& rot, const py::object
   }
   for (std::size_t k = 0; k < out.motion.rotations.size(); ++k) {
     if (r) {
-      const double* q = r->data() + 4 * k;
-      const glm::dquat v(q[0], q[1], q[2], q[3]);
-      const double norm = std::sqrt(glm::dot(v, v));
-      if (!(norm > 1e-9)) throw Error("rotations: quaternion " + std::to_string(k) + " has length 0");
-      out.motion.rotations[k] = v / norm;
+      out.motion.rotations[k] = unit_quaternion(r->data() + 4 * k, k, joints);
     } else if (a) {
       const double* v = a->data() + 3 * k;
       out.motion.rotations[k] = expmap_to_quat(glm::dvec3(v[0], v[1], v[2]));
@@ -193,101 +297,22 @@ PyMotion with_frames(const PyMotion& pm, const py::object& rot, const py::object
 
 }  // namespace
 
-bool is_path(const py::handle& object) { return py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__"); }
-
-std::string path_of(const py::handle& object) {
-  const py::object p = py::module_::import("os").attr("fspath")(object);
-  if (!py::isinstance<py::str>(p)) throw Error("expected a path as text, got bytes");
-  return p.cast<std::string>();
-}
-
-Config config_of(const py::object& config, const py::object& set, const py::object& seed) {
-  Config c;
-  if (!config.is_none()) {
-    if (is_path(config)) {
-      config_load_file(c, path_of(config));
-      try {
-        config_validate(c);  // before the assignments, as the command line's --config
-      } catch (const Error& e) {
-        throw Error(path_of(config) + ": " + e.what());
-      }
-    } else {
-      config_load_text(c, json_dump(from_python(config, "config")), "config");
-    }
-  }
-  if (!set.is_none()) {
-    // As the command line's --set: a bad key or value, or a rule the assignments break, is
-    // "--set: ..." (cli_common.cpp ConfigOptions::make).
-    try {
-      if (py::isinstance<py::dict>(set)) {
-        for (const auto& [key, value] : set.cast<py::dict>()) {
-          std::string text;
-          if (py::isinstance<py::bool_>(value))
-            text = value.cast<bool>() ? "true" : "false";
-          else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))
-            for (const py::handle& item : value) text += (text.empty() ? "" : ",") + py::str(item).cast<std::string>();
-          else
-            text = py::str(value).cast<std::string>();
-          config_set(c, py::str(key).cast<std::string>(), text);
-        }
-      } else {
-        for (const py::handle& item : set) config_set_assignment(c, item.cast<std::string>());
-      }
-      config_validate(c);
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      throw Error(what.rfind("--set", 0) == 0 ? what : "--set: " + what);
-    }
-  }
-  if (!seed.is_none()) c.seed = seed.cast<std::uint64_t>();
-  config_validate(c);
-  return c;
-}
-
-audio::Audio audio_of(const py::handle& samples, const py::handle& sample_rate, const std::string& name) {
-  if (sample_rate.is_none()) throw Error(name + ": audio given as samples needs sample_rate=");
-  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(samples);
-  if (!a || a.ndim() < 1 || a.ndim() > 2)
-    throw Error(name + ": expected audio samples as a 1-D array (mono) or 2-D (samples, channels)");
-  audio::Audio out;
-  out.sample_rate = sample_rate.cast<int>();
-  const py::ssize_t n = a.shape(0), channels = a.ndim() == 2 ? a.shape(1) : 1;
-  if (channels < 1) throw Error(name + ": the audio has no channels");
-  out.samples.resize(static_cast<std::size_t>(n));
-  const float* p = a.data();
-  for (py::ssize_t i = 0; i < n; ++i) {
-    double sum = 0;
-    for (py::ssize_t c = 0; c < channels; ++c) sum += p[i * channels + c];
-    out.samples[static_cast<std::size_t>(i)] = static_cast<float>(sum / static_cast<double>(channels));
-  }
-  check_audio_samples(out, name);
-  return out;
-}
-
-std::vector<text::Word> words_of(const py::handle& words) {
-  std::vector<text::Word> out;
-  for (const py::handle& item : words) {
-    const py::sequence t = py::reinterpret_borrow<py::sequence>(item);
-    if (t.size() != 3) throw Error("words: each word is (start_seconds, end_seconds, text)");
-    out.push_back({t[0].cast<double>(), t[1].cast<double>(), t[2].cast<std::string>()});
-  }
-  return out;
-}
-
-py::object to_python(const nlohmann::ordered_json& j) {
-  return py::module_::import("json").attr("loads")(json_dump(j, -1));
-}
-
-nlohmann::json from_python(const py::handle& object, const std::string& name) {
-  const std::string text = py::module_::import("json").attr("dumps")(object).cast<std::string>();
-  return parse_json_text(text, name);
-}
-
 void bind_motion(py::module_& m) {
   py::class_<PyMotion>(m, "Motion", R"(A motion: per frame, every joint's local rotation and translation in a skeleton.
 
 Arrays are float64 copies. Rotations map a vector from the joint's frame to its parent's.
 An SMPL-X .npz motion also carries its body: betas (shape) and expressions (the face).)")
+      .def(py::init(&motion_from_arrays), py::arg("joint_names"), py::arg("parents"), py::arg("offsets"),
+           py::arg("rotations"), py::arg("root"), py::arg("fps"), py::kw_only(), py::arg("name") = py::none(),
+           R"(A motion from arrays, as an editor holds one; usable wherever a motion read from a file is.
+
+joint_names: list of J str (unique, no spaces: BVH names them); parents: J ints, -1 for the
+root (joint 0), else the index of a joint before it; offsets: (J, 3) rest offsets from the
+parent (the root's is its OFFSET); rotations: (frames, J, 4) local rotations as (w, x, y, z)
+quaternions, the order Motion.rotations gives, each scaled to length 1 when it is not (one of
+length 0 is an error); root: (frames, 3) root positions; fps: 1 to 1000. Every value must be finite. Written
+as BVH, the root has position and rotation channels and the other joints rotations, Z X Y,
+so reading the file back gives this motion (to the file's six decimals).)")
       .def_property_readonly("fps", [](const PyMotion& p) { return p.motion.fps; })
       .def_property_readonly("frame_count", frames_of)
       .def("__len__", frames_of)
@@ -353,13 +378,14 @@ frame count is this motion's, else the rest pose.)")
           "write",
           [](const PyMotion& p, const py::object& path, const std::string& npz_dtype) {
             const std::string file = path_of(path);
+            check_output_file({"", file}, kMotionWriteExtensions);  // as `gmg reenact -o m.txt` refuses it
             const auto floats = enum_from_name(kNpzFloatsNames, npz_dtype);
             if (!floats) throw Error("npz_dtype: '" + npz_dtype + "' is not beat2 or float64");
             const py::gil_scoped_release release;
             motion_write(file, p.motion, p.body, *floats);
           },
           py::arg("path"), py::arg("npz_dtype") = "beat2",
-          "writes .npz (SMPL-X, with the body) when the path ends in .npz, else BVH, as `gmg` writes them")
+          "writes .npz (SMPL-X, with the body) or .bvh by the path's extension, as `gmg` writes them")
       .def("__repr__", [](const PyMotion& p) {
         return "<gmg.Motion " + std::to_string(p.motion.frame_count) + " frames at " + format_number(p.motion.fps) +
                " fps, " + std::to_string(p.motion.joint_count()) + " joints" +

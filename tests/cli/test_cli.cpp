@@ -112,7 +112,7 @@ TEST(Cli, EveryHelpShowsTheDefaultsAndTheExitCodes) {
       {"evaluate", "--hist-width FLOAT=1"},
       {"batch", "--progress TEXT:{auto,lines,none}=auto"},
       {"batch", "(default: the config's seed, 20231009)"},
-      {"ablation", "--folds INT:INT in [2 - 1000]=6"},
+      {"ablation", "--folds INT=6"},
       {"synth", "--stem TEXT=synth"},
       {"config", "(default: the config's seed, 20231009)"},
       {"render", "--size TEXT=640x480"},
@@ -126,8 +126,10 @@ TEST(Cli, EveryHelpShowsTheDefaultsAndTheExitCodes) {
     EXPECT_FALSE(contains(r.out, "=[]")) << name << ":\n" << r.out;            // an empty list is no default to show
     EXPECT_FALSE(contains(r.out, "--seed UINT=0")) << name << ":\n" << r.out;  // batch's seed is not 0 by default
     // Every --help states the exit codes, the interrupt contract included.
-    EXPECT_TRUE(contains(r.out, "Exit codes: 0 success; 1 an input or processing error")) << r.out;
-    EXPECT_TRUE(contains(r.out, "2 a usage error")) << r.out;
+    EXPECT_TRUE(contains(r.out, "Exit codes: 0 success; 2 the command line is wrong, found before any file is read"))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "1 an input file cannot be read or is refused")) << r.out;
+    EXPECT_TRUE(contains(r.out, "batch: 1 some clip failed, 2 the batch could not start")) << r.out;
     EXPECT_TRUE(contains(r.out, "interrupted by Ctrl-C (SIGINT) 130, by SIGTERM 143, by SIGHUP 129")) << r.out;
   }
 }

@@ -507,19 +507,25 @@ TEST_F(HostileInput, Case14FifoInputsAreRefusedNotWaitedOn) {
 
 // 15: an output that is an input (by name, or through a symbolic link) is refused before any
 // work, and so are two outputs that are one file.
+// (Outputs of the right extension: a wrong one is refused first, from the command line alone.)
 TEST_F(HostileInput, Case15OutputEqualToAnInputIsRefused) {
   copy({"ref.bvh", "ref.wav", "ref.gmg", "new.wav"});
-  fs::create_symlink("ref.bvh", at("link.bvh"));
+  fs::create_symlink("ref.bvh", at("link.gmg"));
+  fs::create_symlink("new.wav", at("link.bvh"));
+  fs::create_symlink("ref.gmg", at("link.dot"));
+  write_text(at("x.bvh"), "");
+  fs::create_symlink("x.bvh", at("x.json"));
   const auto before = snapshot(work_.path());
-  expect_refused(gmg({"build", "--motion", "ref.bvh", "--audio", "ref.wav", "-o", "ref.bvh"}), "ref.bvh",
-                 "-o would overwrite the input given as --motion");
-  expect_refused(gmg({"build", "--motion", "ref.bvh", "--audio", "ref.wav", "-o", "link.bvh"}), "link.bvh",
+  expect_refused(gmg({"reenact", "--reference-motion", "ref.bvh", "--reference-audio", "ref.wav", "--audio", "new.wav",
+                      "-o", "ref.bvh"}),
+                 "ref.bvh", "-o would overwrite the input given as --reference-motion");
+  expect_refused(gmg({"build", "--motion", "ref.bvh", "--audio", "ref.wav", "-o", "link.gmg"}), "link.gmg",
                  "-o would overwrite the input given as --motion (ref.bvh)");
-  expect_refused(gmg({"reenact", "--graph", "ref.gmg", "--audio", "new.wav", "-o", "new.wav"}), "new.wav",
+  expect_refused(gmg({"reenact", "--graph", "ref.gmg", "--audio", "new.wav", "-o", "link.bvh"}), "link.bvh",
                  "would overwrite the input given as --audio");
-  expect_refused(gmg({"reenact", "--graph", "ref.gmg", "--audio", "new.wav", "-o", "x.bvh", "--report", "x.bvh"}),
-                 "x.bvh", "given as both -o and --report");
-  expect_refused(gmg({"inspect", "ref.gmg", "--dot", "ref.gmg"}), "ref.gmg", "would overwrite the input");
+  expect_refused(gmg({"reenact", "--graph", "ref.gmg", "--audio", "new.wav", "-o", "x.bvh", "--report", "x.json"}),
+                 "x.json", "given as both -o and --report");
+  expect_refused(gmg({"inspect", "ref.gmg", "--dot", "link.dot"}), "link.dot", "would overwrite the input");
   expect_unchanged(before);
 }
 
@@ -864,28 +870,29 @@ TEST_F(HostileInput, Case24KilledRenderTakesFfmpegAndIsCleanedUpAfter) {
 
 // ---- Outputs of the wrong kind -------------------------------------------------------------
 
-// 25: an output whose extension names another format, or that is a folder, is refused before any
-// input is read (here the graph does not even exist), and nothing is written.
+// 25: an output whose extension names another format (a usage error, exit 2), or that is a folder,
+// is refused before any input is read (here the graph does not even exist), and nothing is written.
 TEST_F(HostileInput, Case25OutputsOfTheWrongKindAreRefusedUpFront) {
   copy({"new.wav", "ref.bvh", "ref.wav"});
   fs::create_directories(at("folder.bvh"));
   const auto before = snapshot(work_.path());
-  const std::string motion = "-o must be a .bvh or .npz file (its extension chooses the format)";
+  const std::string motion = ": -o must be a .bvh or .npz file (its extension chooses the format)";
   for (const char* out : {"out.txt", "x.fbx", "out"})
-    expect_refused(gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", out}), out, motion);
+    expect_usage_error(gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", out}), out + motion);
   expect_refused(gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", "folder.bvh"}), "folder.bvh",
                  "-o is a folder, not a file");
-  expect_refused(gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", "o.bvh", "--report", "r.txt"}),
-                 "r.txt", "--report must be a .json file");
+  expect_usage_error(
+      gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", "o.bvh", "--report", "r.txt"}),
+      "r.txt: --report must be a .json file");
   expect_refused(gmg({"reenact", "--graph", "missing.gmg", "--audio", "new.wav", "-o", "no/such/o.bvh"}),
                  "no/such/o.bvh", "-o: the folder no/such does not exist");
-  expect_refused(gmg({"build", "--motion", "ref.bvh", "--audio", "ref.wav", "-o", "g.graph"}), "g.graph",
-                 "-o must be a .gmg file");
-  expect_refused(gmg({"evaluate", "--generated", "ref.bvh", "--plot", "p.jpg"}), "p.jpg",
-                 "--plot must be a .png or .svg file");
-  expect_refused(gmg({"evaluate", "--generated", "ref.bvh", "-o", "m.csv"}), "m.csv", "-o must be a .json file");
-  expect_refused(gmg({"render", "ref.bvh", "-o", "v.avi"}), "v.avi", "must be a .mp4, .mkv or .mov file");
-  expect_refused(gmg({"inspect", "missing.gmg", "--dot", "g.png"}), "g.png", "--dot must be a .dot or .gv file");
+  expect_usage_error(gmg({"build", "--motion", "ref.bvh", "--audio", "ref.wav", "-o", "g.graph"}),
+                     "g.graph: -o must be a .gmg file");
+  expect_usage_error(gmg({"evaluate", "--generated", "ref.bvh", "--plot", "p.jpg"}),
+                     "p.jpg: --plot must be a .png or .svg file");
+  expect_usage_error(gmg({"evaluate", "--generated", "ref.bvh", "-o", "m.csv"}), "m.csv: -o must be a .json file");
+  expect_usage_error(gmg({"render", "ref.bvh", "-o", "v.avi"}), "v.avi: -o must be a .mp4, .mkv or .mov file");
+  expect_usage_error(gmg({"inspect", "missing.gmg", "--dot", "g.png"}), "g.png: --dot must be a .dot or .gv file");
   expect_refused(gmg({"synth", "-o", "ref.bvh"}), "ref.bvh", "-o is a file, not a folder");
   expect_unchanged(before);
 }

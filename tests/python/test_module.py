@@ -79,7 +79,7 @@ def test_errors_are_gmg_errors_with_the_command_lines_messages(synth, tmp_path):
         assert "gmg: error: " + str(e.value) + "\n" == err
     with pytest.raises(gmg.Error, match="audio given as samples needs sample_rate="):
         gmg.reenact(synth / "ref.gmg", np.zeros(16000, dtype=np.float32))
-    with pytest.raises(gmg.Error, match="sample rate 100 Hz is outside"):
+    with pytest.raises(gmg.Error, match="sample_rate: 100 Hz is outside the 4000 to 192000 Hz gmg reads"):
         gmg.reenact(synth / "ref.gmg", np.zeros(1000, dtype=np.float32), sample_rate=100)
 
 
