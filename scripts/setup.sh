@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs that are missing, then configures and builds
 # build/ (Release). Idempotent: a second run installs nothing and rebuilds only what changed.
+# Usage: scripts/setup.sh [TARGET...]: only those targets (scripts/demo.sh builds `gmg`), else
+# everything. Every caller configures with the same options (warnings are errors unless
+# GMG_WERROR=OFF), so what one script built another does not compile again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,6 +29,13 @@ else
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGMG_WERROR="${GMG_WERROR:-OFF}" >/dev/null
-cmake --build build -j"$jobs"
-echo "setup: built build/gmg"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGMG_WERROR="${GMG_WERROR:-ON}" >/dev/null
+if (($#)); then
+  targets=()
+  for t in "$@"; do targets+=(--target "$t"); done
+  cmake --build build -j"$jobs" "${targets[@]}"
+  echo "setup: built $*"
+else
+  cmake --build build -j"$jobs"
+  echo "setup: built build/gmg, the tests and the Python module"
+fi

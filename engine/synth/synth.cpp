@@ -51,6 +51,7 @@ SynthClip synth_speaker(const SynthSpec& spec) {
   clip.syllables = std::move(plan.syllables);
   clip.phrases = std::move(plan.phrases);
   clip.keyword_times = std::move(plan.keyword_times);
+  clip.keyword_gestures = std::move(plan.keyword_gestures);
   return clip;
 }
 

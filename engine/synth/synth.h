@@ -4,23 +4,32 @@
 //
 // What is generated (everything from one seeded std::mt19937_64, so the same SynthSpec gives
 // byte-identical output on the same build):
-// - A speech plan: a lead-in silence, then phrases (1.5-4 s) separated by pauses (0.3-0.8 s).
-//   Inside a phrase, words of 1-3 syllables at 4-5 syllables/s (faster with `style`). Words come
-//   from a small vocabulary: about 15% are gesture keywords of assets/keywords.txt ("this",
-//   "big", "not", "very", ...), the rest neutral words that are not in that lexicon ("the",
-//   "people", "water", ...). Content words have one stressed syllable; keywords are stressed on
-//   their first syllable; function words ("the", "and", ...) are unstressed.
+// - A speech plan: a lead-in silence, then sentences of a small English grammar ("The children
+//   found a huge garden.", "But her brother bought three houses.") separated by pauses of
+//   0.8-1.2 s (a third of them 1.6-2.4 s); a comma inside a sentence is a pause of 0.3-0.45 s.
+//   Words of 1-4 syllables at 4-5 syllables/s (faster with `style`). About one word in six is a
+//   gesture keyword of assets/keywords.txt, where a speaker would say it ("this", "big",
+//   "not", "never", "really", "together", ...); the others are words that lexicon lacks. Content
+//   words and keywords have one stressed syllable; function words ("the", "a", "was", ...) are
+//   unstressed. The transcript writes the sentences as text: a capital first letter, commas, full
+//   stops.
 // - Audio: each syllable is a voiced burst (fundamental 110-220 Hz with harmonics, a short
 //   broadband "consonant" click at its start, attack 10 ms, exponential decay 80-150 ms);
 //   stressed syllables are about twice as loud. Background noise (RMS 1e-3) everywhere. The
 //   librosa-style onset detector (audio/onset.h, default parameters) finds onsets at (just
 //   before) the stressed syllables.
-// - Motion: idle sway and breathing on hips, spine and head; the hands rise from a rest pose to
-//   a gesture space while speaking and sink back in pauses; a beat (quick down-then-up stroke of
-//   the dominant forearm and hand, ~0.3 s, a weaker one of the other hand) on each stressed
-//   syllable; an emphasis gesture (both arms raise and open, 0.6-1 s) on each keyword; head nods
-//   on stresses. Every curve is a sum of smooth bumps (raised cosines) and low-frequency
-//   sinusoids, so the motion has no frame-to-frame jumps.
+// - Motion: a person standing and talking. The feet stay planted on the floor and the knees
+//   slightly bent (5-20 degrees, solved for the hips' position every frame); every few seconds
+//   the weight shifts to one leg (the hips sway over it, the other knee relaxes) or back to
+//   both. Breathing, and a slow look-around of the head. While a sentence is spoken the hands
+//   are up in front of the body, making a beat (a short lift, then a quick downward stroke of
+//   the forearm and hand, a weaker one of the other hand) on each stressed syllable and a larger
+//   emphasis gesture on each keyword, by its kind: both hands open out (size, quantity,
+//   evaluation), the dominant hand points (this, here, away), both hands sweep out palms down
+//   (not, never, but) or lift to the chest (very, then, always). In the pauses between sentences
+//   the hands sink to rest beside the thighs. Head nods on stresses. Every curve is a sum of
+//   smooth bumps (raised cosines) and low-frequency sinusoids, so the motion has no
+//   frame-to-frame jumps.
 #pragma once
 
 #include <cstdint>
@@ -45,6 +54,9 @@ struct SynthSpec {
                              // pitch, rest pose), so two "speakers" differ
 };
 
+// The emphasis gesture a keyword carries (None for any other word).
+enum class SynthGesture : std::uint8_t { None, Open, Point, Sweep, Lift };
+
 // One syllable of the speech plan.
 struct SynthSyllable {
   double time = 0;        // seconds: start of the voiced burst (its audible onset)
@@ -53,9 +65,11 @@ struct SynthSyllable {
 };
 
 // One phrase of the speech plan: [start, end] in seconds (first syllable start, last word end).
+// A sentence is one phrase or several separated by commas.
 struct SynthPhrase {
   double start = 0;
   double end = 0;
+  bool ends_sentence = true;  // false: a comma, the sentence goes on after a short pause
 };
 
 struct SynthClip {
@@ -63,9 +77,10 @@ struct SynthClip {
   audio::Audio audio;             // exactly round(duration_s * sample_rate) samples
   std::vector<text::Word> words;  // sorted, inside [0, duration]; times are whole milliseconds
   // The plan behind the data (ground truth for tests and benchmarks):
-  std::vector<SynthSyllable> syllables;  // sorted by time
-  std::vector<SynthPhrase> phrases;      // sorted, disjoint
-  std::vector<double> keyword_times;     // start of every keyword word (seconds), sorted
+  std::vector<SynthSyllable> syllables;        // sorted by time
+  std::vector<SynthPhrase> phrases;            // sorted, disjoint
+  std::vector<double> keyword_times;           // start of every keyword word (seconds), sorted
+  std::vector<SynthGesture> keyword_gestures;  // the gesture of each keyword (same order)
 };
 
 // Y-up, centimetres, facing +Z, T-pose at rest (identity rotations; the arms lie along +-X).

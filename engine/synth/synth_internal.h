@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "engine/core/math.h"
@@ -104,18 +105,79 @@ inline double ramp(double t, double t0, double t1) {
   return 0.5 * (1.0 - std::cos(kPi * (t - t0) / (t1 - t0)));
 }
 
-// ---- Steps -----------------------------------------------------------------------------------
+// ---- Sentences ---------------------------------------------------------------------------------
+
+// One word of a sentence of the grammar (synth_sentences.cpp).
+struct SentenceWord {
+  std::string text;                           // as the transcript writes it: "The", "garden,", "house."
+  int syllables = 1;                          // >= 1
+  int stress = -1;                            // the stressed syllable; -1 for none (function words)
+  SynthGesture gesture = SynthGesture::None;  // not None: a keyword of assets/keywords.txt
+  bool pause_after = false;                   // a comma: a short pause follows, inside the sentence
+};
+
+// A sentence drawn from the grammar's templates, 4 to 10 words.
+std::vector<SentenceWord> make_sentence(Rng& rng);
+
+// Every word the grammar can say (lower case, as in its tables) with the gesture it carries.
+struct GrammarWord {
+  std::string text;
+  SynthGesture gesture = SynthGesture::None;
+};
+std::vector<GrammarWord> grammar_vocabulary();
+
+// ---- The speech plan ---------------------------------------------------------------------------
 
 // What is said when: the ground truth behind the audio, the transcript and the gestures.
 struct SpeechPlan {
   std::vector<text::Word> words;
-  std::vector<bool> word_is_keyword;
+  std::vector<SynthGesture> word_gesture;  // per word: the keyword's gesture, None for other words
   std::vector<SynthSyllable> syllables;
   std::vector<SynthPhrase> phrases;
   std::vector<double> keyword_times;
+  std::vector<SynthGesture> keyword_gestures;  // per keyword time
 };
 
-// A lead-in silence, then phrases of words until `duration` (see synth.h). style in [0, 1].
+// ---- The standing body (synth_stance.cpp) ------------------------------------------------------
+
+// Where the weight is at each frame: +1 on the left leg, -1 on the right, 0 on both; it stays a
+// few seconds, then moves smoothly to another of the three.
+std::vector<double> weight_curve(double fps, std::size_t frame_count, Rng& rng);
+
+// One leg's joints and its planted foot.
+struct LegJoints {
+  int upleg = -1, leg = -1, foot = -1;
+  glm::dvec3 hip_offset{0.0};         // the hip joint from the root (cm)
+  double thigh = 0, shin = 0;         // bone lengths (cm)
+  glm::dvec3 ankle{0.0};              // where the ankle stays (world, cm)
+  glm::dquat foot_world{1, 0, 0, 0};  // the foot's world rotation: flat, turned out
+};
+
+struct LowerBody {
+  int hips = -1;
+  LegJoints legs[2];  // [0] left, [1] right
+};
+
+// The legs of a skeleton with Hips, *UpLeg, *Leg, *Foot and *ToeBase (gmg::Error otherwise).
+LowerBody lower_body(const Skeleton& sk);
+
+// The lower body's inputs at one frame.
+struct StancePose {
+  double weight = 0;      // as weight_curve
+  double shift_x = 0;     // the hips' sideways position (cm, +X the left)
+  double shift_z = 0;     // the hips' forward position (cm)
+  double yaw_deg = 0;     // the hips' turn about the vertical
+  double bend_noise = 0;  // degrees added to both knees' bend
+};
+
+// Sets the root's position and rotation and both legs' rotations at frame f: each knee bent by
+// 6-17 degrees (+ bend_noise) by the weight, the feet where b plants them. Returns the pelvis'
+// roll (degrees about the forward axis; > 0 when the left hip is higher).
+double pose_lower_body(Motion& m, int f, const LowerBody& b, const StancePose& p);
+
+// ---- Steps -------------------------------------------------------------------------------------
+
+// A lead-in silence, then sentences until `duration` (see synth.h). style in [0, 1].
 SpeechPlan plan_speech(double duration, double style, Rng& rng);
 
 // The speech of the plan: one voiced burst per syllable over background noise, sample_count

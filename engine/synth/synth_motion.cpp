@@ -1,5 +1,6 @@
 // The gestures of the synthetic speaker (see synth.h): curves over time (speaking envelope,
-// beats, nods, emphasis, idle noise), then a pose per frame from them.
+// beats, nods, emphasis gestures, weight shifts, idle noise), then a pose per frame from them.
+// The lower body is posed by synth_stance.cpp.
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -34,38 +35,76 @@ void add_bump2(std::vector<double>& curve, double fps, double start, double apex
   }
 }
 
-// The speaker's style (SynthSpec::style): amplitudes, tempo and poses, angles in degrees.
-struct Style {
-  double gain, beat_width, other_hand, talk_down, talk_fwd, talk_flex;
-  double rest_down = 78.0, rest_fwd = 15.0, rest_flex = 55.0;
-
-  explicit Style(double style)
-      : gain(0.85 + 0.2 * style),         // gesture amplitude
-        beat_width(0.36 - 0.04 * style),  // beat stroke duration (s)
-        other_hand(0.50 + 0.30 * style),  // share of the non-dominant hand in beats
-        talk_down(62.0 - 8.0 * style),    // gesture space height (upper-arm elevation)
-        talk_fwd(25.0 + 6.0 * style),
-        talk_flex(85.0 + 5.0 * style) {}
+// An arm's pose, in degrees. The upper arm hangs, then is raised forward (flexion) and out to the
+// side (abduction) and turned about its length (twist > 0 turns the forearm in across the body);
+// the elbow bends the forearm forward; the wrist bends the hand towards the palm (> 0).
+struct ArmPose {
+  double flexion = 0, abduction = 0, twist = 0, elbow = 0, wrist = 0;
 };
 
-// Speaking envelope S: 0 = hands at rest, 1 = hands in the gesture space. It rises before the
-// first phrase (preparation) and falls after the last one (retraction); in every pause between
-// phrases the hands sink part of the way back towards rest (deeper in longer pauses), slowly
-// enough that pauses stay calmer than the beats.
+ArmPose mix(const ArmPose& a, const ArmPose& b, double t) {
+  return ArmPose{a.flexion + t * (b.flexion - a.flexion), a.abduction + t * (b.abduction - a.abduction),
+                 a.twist + t * (b.twist - a.twist), a.elbow + t * (b.elbow - a.elbow),
+                 a.wrist + t * (b.wrist - a.wrist)};
+}
+
+// Adds k times d to p.
+void add(ArmPose& p, const ArmPose& d, double k) {
+  p.flexion += k * d.flexion;
+  p.abduction += k * d.abduction;
+  p.twist += k * d.twist;
+  p.elbow += k * d.elbow;
+  p.wrist += k * d.wrist;
+}
+
+// The speaker's style (SynthSpec::style): amplitudes, tempo and the hands' place while talking.
+struct Style {
+  double gain, beat_width, other_hand;
+  ArmPose rest{6.0, 7.0, 8.0, 14.0, 4.0};  // hands hanging beside the thighs
+  ArmPose talk;                            // hands in front of the belly, forearms forward
+
+  explicit Style(double style)
+      : gain(0.9 + 0.25 * style),         // gesture amplitude
+        beat_width(0.40 - 0.04 * style),  // beat stroke duration (s)
+        other_hand(0.45 + 0.30 * style),  // share of the non-dominant hand in beats
+        talk{42.0 + 6.0 * style, 16.0 + 4.0 * style, 24.0, 86.0 + 6.0 * style, -8.0} {}
+};
+
+// What a unit of each gesture curve adds to the dominant arm (the other arm: see pose_arm).
+const ArmPose kBeat{-2.0, 1.0, 0.0, -17.0, 12.0};       // the stroke: forearm and hand drop
+const ArmPose kBeatLift{2.0, 0.0, 0.0, 10.0, -8.0};     // before it: a small lift
+const ArmPose kOpen{4.0, 26.0, -34.0, -30.0, -16.0};    // both hands open out to the sides
+const ArmPose kPoint{30.0, 18.0, -20.0, -46.0, -6.0};   // the arm reaches forward and points
+const ArmPose kSweepIn{2.0, -6.0, 16.0, 6.0, 0.0};      // hands gather in front...
+const ArmPose kSweep{-4.0, 30.0, -34.0, -12.0, -12.0};  // ...then sweep out, palms down
+const ArmPose kLift{12.0, 4.0, 10.0, 20.0, -6.0};       // both hands come up to the chest
+
+// Speaking envelope S: 0 = hands at rest, 1 = hands in the gesture space. For each sentence it
+// rises in the 0.85 s before the first word (preparation) and falls in the 0.8 s after the last
+// one (retraction); between sentences the hands reach rest, or nearly, before rising again. At a
+// comma they sink a little. The sentences' envelopes u combine as 1 - prod(1 - u), which is
+// smooth where a retraction meets the next preparation (a maximum would turn back abruptly).
 std::vector<double> speaking_envelope(const SpeechPlan& plan, double fps, std::size_t F) {
-  std::vector<double> speak(F, 0.0);
-  if (plan.phrases.empty()) return speak;
-  const double r0 = plan.phrases.front().start - 0.7, r1 = plan.phrases.front().start + 0.05;
-  const double d0 = plan.phrases.back().end, d1 = plan.phrases.back().end + 0.8;
-  for (std::size_t f = 0; f < F; ++f) {
-    const double t = static_cast<double>(f) / fps;
-    speak[f] = std::min(ramp(t, r0, r1), 1.0 - ramp(t, d0, d1));
+  std::vector<double> still(F, 1.0);  // 1 - S
+  std::size_t first = 0;
+  for (std::size_t k = 0; k < plan.phrases.size(); ++k) {
+    if (!plan.phrases[k].ends_sentence) continue;
+    const double a = plan.phrases[first].start, b = plan.phrases[k].end;
+    const int f0 = std::max(0, static_cast<int>(std::floor((a - 0.9) * fps)));
+    const int f1 = std::min(static_cast<int>(F) - 1, static_cast<int>(std::ceil((b + 0.9) * fps)));
+    for (int f = f0; f <= f1; ++f) {
+      const double t = f / fps;
+      still[static_cast<std::size_t>(f)] *= 1.0 - ramp(t, a - 0.9, a - 0.05) * (1.0 - ramp(t, b + 0.1, b + 0.9));
+    }
+    first = k + 1;
   }
+  std::vector<double> speak(F);
+  for (std::size_t f = 0; f < F; ++f) speak[f] = 1.0 - still[f];
   std::vector<double> dip(F, 0.0);
   for (std::size_t k = 0; k + 1 < plan.phrases.size(); ++k) {
+    if (plan.phrases[k].ends_sentence) continue;
     const double a = plan.phrases[k].end, b = plan.phrases[k + 1].start;
-    const double depth = 0.5 * std::clamp((b - a - 0.2) / 0.6, 0.0, 1.0);
-    add_bump(dip, fps, 0.5 * (a + b), (b - a) + 0.8, depth);
+    add_bump(dip, fps, 0.5 * (a + b), (b - a) + 0.3, 0.2);
   }
   for (std::size_t f = 0; f < F; ++f) speak[f] = std::max(0.0, speak[f] - dip[f]);
   return speak;
@@ -73,56 +112,65 @@ std::vector<double> speaking_envelope(const SpeechPlan& plan, double fps, std::s
 
 // Per-frame strengths of the gestures tied to the speech, each softly capped in [0, ~1].
 struct GestureCurves {
-  std::vector<double> beat, beat_other, nod, jaw, emph;
+  std::vector<double> beat, beat_lift, beat_other, nod, jaw, sweep_in;
+  std::vector<double> emphasis[5];  // by SynthGesture (index 0, None, unused)
 };
 
 GestureCurves gesture_curves(const SpeechPlan& plan, double fps, std::size_t F, const Style& style, Rng& rng) {
-  GestureCurves g{std::vector<double>(F, 0.0), std::vector<double>(F, 0.0), std::vector<double>(F, 0.0),
-                  std::vector<double>(F, 0.0), std::vector<double>(F, 0.0)};
-  // Beats on stressed syllables, nods with them, jaw with every syllable.
-  for (std::size_t i = 0; i < plan.syllables.size(); ++i) {
-    const SynthSyllable& syl = plan.syllables[i];
+  GestureCurves g;
+  for (std::vector<double>* c : {&g.beat, &g.beat_lift, &g.beat_other, &g.nod, &g.jaw, &g.sweep_in}) c->assign(F, 0.0);
+  for (std::vector<double>& c : g.emphasis) c.assign(F, 0.0);
+  // Beats on stressed syllables: a lift, then the stroke landing on the syllable; nods with
+  // them, the jaw with every syllable.
+  for (const SynthSyllable& syl : plan.syllables) {
     add_bump(g.jaw, fps, syl.time + 0.06, 0.2, syl.stressed ? 1.0 : 0.6);
     if (!syl.stressed) continue;
     // On a keyword the emphasis gesture below replaces the beat (and the nod stays).
-    const bool on_keyword = plan.word_is_keyword[static_cast<std::size_t>(syl.word)];
+    const bool on_keyword = plan.word_gesture[static_cast<std::size_t>(syl.word)] != SynthGesture::None;
     add_bump(g.nod, fps, syl.time + 0.04, 0.4, rng.uniform(0.5, 1.0));
     if (on_keyword) continue;
-    const double a = rng.uniform(0.7, 1.15);
+    const double a = rng.uniform(0.75, 1.15);
     const double w = style.beat_width * rng.uniform(0.9, 1.1);
-    add_bump(g.beat, fps, syl.time + 0.02, w, a);
-    add_bump(g.beat_other, fps, syl.time + 0.03, w * 1.1, a * rng.uniform(0.6, 1.0));
+    add_bump(g.beat_lift, fps, syl.time - 0.65 * w, 0.9 * w, 0.7 * a);
+    add_bump(g.beat, fps, syl.time - 0.01, w, a);
+    add_bump(g.beat_other, fps, syl.time, w * 1.1, a * rng.uniform(0.6, 1.0));
   }
-  // Emphasis gestures on keywords: preparation from 0.2 s before the keyword, stroke (apex) just
-  // after its start, a slower retraction.
-  for (double kt : plan.keyword_times) {
+  // Emphasis gestures on keywords: preparation from 0.35 s before the keyword, stroke (apex)
+  // just after its start, a slower retraction.
+  for (std::size_t k = 0; k < plan.keyword_times.size(); ++k) {
+    const double kt = plan.keyword_times[k];
+    const SynthGesture kind = plan.keyword_gestures[k];
     const double apex = kt + rng.uniform(0.15, 0.25);
-    // The amplitude is drawn before the retraction: the order GCC gave the two draws when they
-    // were arguments of one call, fixed here so every compiler writes the same clips.
-    const double amplitude = rng.uniform(0.8, 1.1);
-    const double end = apex + rng.uniform(0.5, 0.7);
-    add_bump2(g.emph, fps, kt - 0.2, apex, end, amplitude);
+    const double amplitude = rng.uniform(0.85, 1.1);
+    const double end = apex + rng.uniform(0.6, 0.85);
+    // A sweep gathers the hands first, then sweeps them out; a point reaches furthest.
+    const bool sweep = kind == SynthGesture::Sweep;
+    const double prepare = sweep ? 0.15 : (kind == SynthGesture::Point ? 0.45 : 0.35);
+    add_bump2(g.emphasis[static_cast<int>(kind)], fps, kt - prepare, apex, end, amplitude);
+    if (sweep) add_bump(g.sweep_in, fps, kt - 0.3, 0.5, amplitude);
   }
   // Soft cap, so overlapping gestures do not add up without bound (smooth: tanh).
-  for (double& e : g.emph) e = std::tanh(e) / std::tanh(1.0);
-  for (double& b : g.beat) b = std::tanh(b) / std::tanh(1.0);
-  for (double& b : g.beat_other) b = std::tanh(b) / std::tanh(1.0);
-  for (double& b : g.nod) b = std::tanh(b) / std::tanh(1.0);
-  for (double& b : g.jaw) b = std::tanh(b);
+  const double unit = std::tanh(1.0);
+  for (std::vector<double>* c : {&g.beat, &g.beat_lift, &g.beat_other, &g.nod, &g.sweep_in})
+    for (double& v : *c) v = std::tanh(v) / unit;
+  for (std::vector<double>& c : g.emphasis)
+    for (double& v : c) v = std::tanh(v) / unit;
+  for (double& v : g.jaw) v = std::tanh(v);
   return g;
 }
 
 // Slow idle curves, drawn in this order (members are initialised in declaration order).
 struct IdleCurves {
-  SmoothNoise sway_x, sway_z, hip_yaw;
+  SmoothNoise sway_x, sway_z, hip_yaw, knees;
   SmoothNoise spine_yaw, spine_roll, head_yaw, head_pitch, head_roll;
   double breath_hz, breath_phase;
-  SmoothNoise arm_down[2], arm_fwd[2], arm_flex[2], curl[2];  // per side
+  SmoothNoise arm_flex[2], arm_twist[2], arm_elbow[2], curl[2];  // per side
 
   explicit IdleCurves(Rng& rng)
       : sway_x(rng, 0.05, 0.15),
         sway_z(rng, 0.05, 0.15),
         hip_yaw(rng, 0.03, 0.1),
+        knees(rng, 0.05, 0.2),
         spine_yaw(rng, 0.05, 0.2),
         spine_roll(rng, 0.05, 0.2),
         head_yaw(rng, 0.05, 0.15),
@@ -130,21 +178,20 @@ struct IdleCurves {
         head_roll(rng, 0.05, 0.15),
         breath_hz(rng.uniform(0.2, 0.3)),
         breath_phase(rng.uniform(0.0, 2.0 * kPi)),
-        arm_down{SmoothNoise(rng, 0.1, 0.5), SmoothNoise(rng, 0.1, 0.5)},
-        arm_fwd{SmoothNoise(rng, 0.1, 0.5), SmoothNoise(rng, 0.1, 0.5)},
-        arm_flex{SmoothNoise(rng, 0.1, 0.6), SmoothNoise(rng, 0.1, 0.6)},
+        arm_flex{SmoothNoise(rng, 0.2, 0.7), SmoothNoise(rng, 0.2, 0.7)},
+        arm_twist{SmoothNoise(rng, 0.2, 0.7), SmoothNoise(rng, 0.2, 0.7)},
+        arm_elbow{SmoothNoise(rng, 0.2, 0.8), SmoothNoise(rng, 0.2, 0.8)},
         curl{SmoothNoise(rng, 0.05, 0.3), SmoothNoise(rng, 0.05, 0.3)} {}
 };
 
-// Joint indices of the skeleton (-1 for a joint it does not have); [0] left, [1] right.
+// Joint indices of the upper body (-1 for a joint the skeleton lacks); [0] left, [1] right.
 struct Joints {
-  int hips, spine, spine1, spine2, neck, head, jaw;
-  int shoulder[2], arm[2], fore[2], hand[2], upleg[2];
+  int spine, spine1, spine2, neck, head, jaw;
+  int shoulder[2], arm[2], fore[2], hand[2];
   std::vector<std::pair<int, int>> fingers[2];  // (joint, finger index 0..4)
 
   explicit Joints(const Skeleton& sk)
-      : hips(sk.find("Hips")),
-        spine(sk.find("Spine")),
+      : spine(sk.find("Spine")),
         spine1(sk.find("Spine1")),
         spine2(sk.find("Spine2")),
         neck(sk.find("Neck")),
@@ -156,7 +203,6 @@ struct Joints {
       arm[side] = sk.find(p + "Arm");
       fore[side] = sk.find(p + "ForeArm");
       hand[side] = sk.find(p + "Hand");
-      upleg[side] = sk.find(p + "UpLeg");
       for (int f = 0; f < 5; ++f)
         for (int level = 1; level <= 4; ++level) {
           const int j = sk.find(p + "Hand" + kFingers[f] + std::to_string(level));
@@ -171,8 +217,10 @@ struct PoseInputs {
   const Style& style;
   const GestureCurves& gestures;
   const std::vector<double>& speak;
+  const std::vector<double>& weight;
   const IdleCurves& idle;
   const Joints& joints;
+  const LowerBody& legs;
 };
 
 // Sets joint's rotation at frame f (joints the skeleton lacks are skipped).
@@ -180,30 +228,41 @@ void set_rotation(Motion& m, int f, int joint, const glm::dquat& q) {
   if (joint >= 0) m.rotations[m.index(f, joint)] = glm::normalize(q);
 }
 
-// Hips, legs, spine, neck, head and jaw at frame f.
+// How much of any emphasis gesture is under way at frame f, soft-capped like the curves (a
+// maximum over the kinds would have corners where two gestures overlap).
+double emphasis(const PoseInputs& in, std::size_t f) {
+  double e = 0;
+  for (const std::vector<double>& c : in.gestures.emphasis) e += c[f];
+  return std::tanh(e) / std::tanh(1.0);
+}
+
+// Hips and legs (synth_stance.cpp), spine, neck, head and jaw at frame f.
 void pose_trunk(Motion& m, int f, double t, const PoseInputs& in) {
   const auto fi = static_cast<std::size_t>(f);
   const Joints& J = in.joints;
   const IdleCurves& idle = in.idle;
-  const double S = in.speak[fi], E = in.gestures.emph[fi];
+  const double S = in.speak[fi], E = emphasis(in, fi);
   const double breath = std::sin(2.0 * kPi * idle.breath_hz * t + idle.breath_phase);
 
-  // Hips: sway and a little yaw; the legs counter-rotate so the feet stay put.
-  m.translations[m.index(f, J.hips)] =
-      glm::dvec3(1.2 * idle.sway_x(t), 95.0 + 0.2 * breath, 0.8 * idle.sway_z(t) + 0.6 * S);
-  const glm::dquat hip_q = ry(2.0 * idle.hip_yaw(t));
-  set_rotation(m, f, J.hips, hip_q);
-  for (int side = 0; side < 2; ++side) set_rotation(m, f, J.upleg[side], glm::inverse(hip_q));
-
-  // Spine: breathing, sway, leaning in while speaking, a twist with the dominant hand's beats.
-  const double yaw = 3.0 * idle.spine_yaw(t) - 2.0 * in.gestures.beat[fi] * in.style.gain * S;
-  const double roll = 1.5 * idle.spine_roll(t);
-  const double pitch = 0.8 * breath + 2.0 * S + 1.5 * E;
-  set_rotation(m, f, J.spine, ry(yaw * 0.3) * rx(pitch * 0.3) * rz(roll * 0.3));
-  set_rotation(m, f, J.spine1, ry(yaw * 0.35) * rx(pitch * 0.35) * rz(roll * 0.35));
-  set_rotation(m, f, J.spine2, ry(yaw * 0.35) * rx(pitch * 0.35 - 1.0 * E) * rz(roll * 0.35));
+  // The hips over the loaded leg, a little forward while speaking.
+  StancePose stance;
+  stance.weight = in.weight[fi];
+  stance.shift_x = 2.8 * in.weight[fi] + 0.5 * idle.sway_x(t);
+  stance.shift_z = 0.8 * idle.sway_z(t) + 0.6 * S;
+  stance.yaw_deg = 2.0 * idle.hip_yaw(t);
+  stance.bend_noise = 1.0 * idle.knees(t);
+  const double pelvis_roll = pose_lower_body(m, f, in.legs, stance);
+  // The spine rights the torso over the tilted pelvis and tilts the shoulders a little the other
+  // way; it breathes, turns back from the hips' turn and with the dominant hand's beats, and
+  // leans in while speaking and on emphasis.
+  const double yaw = 3.0 * idle.spine_yaw(t) - 1.5 * idle.hip_yaw(t) - 2.5 * in.gestures.beat[fi] * in.style.gain * S;
+  const double roll = 1.5 * idle.spine_roll(t) - 1.25 * pelvis_roll;
+  const double pitch = 0.8 * breath + 2.5 * S + 3.0 * E;
+  set_rotation(m, f, J.spine, ry(yaw * 0.3) * rx(pitch * 0.3) * rz(roll * 0.5));
+  set_rotation(m, f, J.spine1, ry(yaw * 0.35) * rx(pitch * 0.35) * rz(roll * 0.3));
+  set_rotation(m, f, J.spine2, ry(yaw * 0.35) * rx(pitch * 0.35 - 1.0 * E) * rz(roll * 0.2));
   // Neck and head: slow look-around, nods on stresses, a lift on emphasis.
-  const double h_pitch = 3.0 * idle.head_pitch(t) + 4.0 * in.gestures.nod[fi] * S - 3.0 * E;
+  const double h_pitch = 3.0 * idle.head_pitch(t) + 5.0 * in.gestures.nod[fi] * S - 4.0 * E - 0.5 * pitch;
   set_rotation(m, f, J.neck, ry(3.0 * idle.head_yaw(t)) * rx(0.4 * h_pitch));
   set_rotation(m, f, J.head, ry(6.0 * idle.head_yaw(t)) * rx(0.6 * h_pitch) * rz(3.0 * idle.head_roll(t)));
   set_rotation(m, f, J.jaw, rx(8.0 * in.gestures.jaw[fi]));
@@ -215,36 +274,43 @@ void pose_arm(Motion& m, int f, double t, int side, const PoseInputs& in) {
   const Style& st = in.style;
   const Joints& J = in.joints;
   const IdleCurves& idle = in.idle;
-  const double S = in.speak[fi], E = in.gestures.emph[fi];
+  const GestureCurves& g = in.gestures;
+  const double S = in.speak[fi];
   const double s = side == 0 ? 1.0 : -1.0;  // mirror: rotations about Y and Z flip sign
-  const bool dominant = side == 1;          // the right hand leads the beats
-  const double b = (dominant ? in.gestures.beat[fi] : st.other_hand * in.gestures.beat_other[fi]) * st.gain;
-  const double lower = dominant ? 0.0 : 4.0;  // the other hand sits a little lower
-  double down = st.rest_down + S * (st.talk_down + lower - st.rest_down) + 4.0 * S * idle.arm_down[side](t);
-  double fwd = st.rest_fwd + S * (st.talk_fwd - st.rest_fwd) + 5.0 * S * idle.arm_fwd[side](t);
-  double flex = st.rest_flex + S * (st.talk_flex - lower - st.rest_flex) + 8.0 * S * idle.arm_flex[side](t);
-  double wrist = 5.0 * S;
-  // Beat: the forearm and hand drop and come back up.
-  flex -= 11.0 * b;
-  down += 2.0 * b;
-  wrist -= 12.0 * b;
-  // Emphasis: both arms rise and open out to the sides, the forearms extend.
-  down -= 12.0 * st.gain * E;
-  fwd -= 14.0 * st.gain * E;
-  flex -= 18.0 * st.gain * E;
-  wrist += 10.0 * st.gain * E;
-  set_rotation(m, f, J.shoulder[side], rz(s * (4.0 * st.gain * E + 1.0 * b)));
-  // Upper arm: elevation `down` from the T-pose, then swung forward by `fwd` about vertical.
-  set_rotation(m, f, J.arm[side], ry(-s * fwd) * rz(-s * down));
-  set_rotation(m, f, J.fore[side], ry(-s * flex));
-  set_rotation(m, f, J.hand[side], ry(-s * wrist) * rz(-s * 5.0 * idle.curl[side](t)));
-  // Fingers: a relaxed curl that varies slowly and opens on emphasis.
-  const double c = 15.0 + 8.0 * idle.curl[side](t) - 12.0 * E;
+  const bool dominant = side == 1;          // the right hand leads the beats and points
+  ArmPose p = mix(st.rest, st.talk, S);
+  if (!dominant) {
+    p.flexion -= 5.0 * S;  // the other hand sits a little lower
+    p.elbow -= 8.0 * S;
+  }
+  // The hands drift while speaking (more than at rest), so they are never still between beats.
+  p.flexion += (1.0 + 5.0 * S) * idle.arm_flex[side](t);
+  p.twist += (1.0 + 8.0 * S) * idle.arm_twist[side](t);
+  p.elbow += (1.5 + 10.0 * S) * idle.arm_elbow[side](t);
+  const double k = st.gain * S;
+  const double beat = dominant ? g.beat[fi] : st.other_hand * g.beat_other[fi];
+  add(p, kBeat, k * beat);
+  add(p, kBeatLift, k * (dominant ? 1.0 : st.other_hand) * g.beat_lift[fi]);
+  add(p, kOpen, k * g.emphasis[static_cast<int>(SynthGesture::Open)][fi]);
+  add(p, kPoint, k * (dominant ? 1.0 : 0.15) * g.emphasis[static_cast<int>(SynthGesture::Point)][fi]);
+  add(p, kSweepIn, k * g.sweep_in[fi]);
+  add(p, kSweep, k * g.emphasis[static_cast<int>(SynthGesture::Sweep)][fi]);
+  add(p, kLift, k * g.emphasis[static_cast<int>(SynthGesture::Lift)][fi]);
+  const double E = emphasis(in, fi);
+  set_rotation(m, f, J.shoulder[side], rz(s * (5.0 * k * E + 1.5 * k * beat)));
+  // Upper arm: from the T-pose down to hanging, turned about its length, then raised out to the
+  // side and forward.
+  set_rotation(m, f, J.arm[side], rx(-p.flexion) * rz(s * p.abduction) * rz(-s * 90.0) * rx(p.twist));
+  set_rotation(m, f, J.fore[side], ry(-s * p.elbow));
+  set_rotation(m, f, J.hand[side], rz(-s * p.wrist) * ry(-s * 4.0 * idle.curl[side](t)));
+  // Fingers: a relaxed curl that varies slowly and opens on emphasis (the pointing finger most).
+  const double point = dominant ? g.emphasis[static_cast<int>(SynthGesture::Point)][fi] * S : 0.0;
+  const double c = 18.0 + 8.0 * idle.curl[side](t) - 12.0 * E * S;
   for (const auto& [j, finger] : J.fingers[side]) {
     if (finger == 4)
       set_rotation(m, f, j, ry(s * 0.5 * c) * rz(-s * 0.3 * c));
     else
-      set_rotation(m, f, j, rz(-s * c * (1.0 + 0.1 * finger)));
+      set_rotation(m, f, j, rz(-s * c * (1.0 + 0.1 * finger) * (finger == 0 ? 1.0 - point : 1.0 + 0.8 * point)));
   }
 }
 
@@ -259,8 +325,10 @@ Motion synth_motion(const SpeechPlan& plan, const SynthSpec& spec, int frame_cou
   const std::vector<double> speak = speaking_envelope(plan, fps, F);
   const GestureCurves gestures = gesture_curves(plan, fps, F, style, rng);
   const IdleCurves idle(rng);
+  const std::vector<double> weight = weight_curve(fps, F, rng);
   const Joints joints(sk);
-  const PoseInputs in{style, gestures, speak, idle, joints};
+  const LowerBody legs = lower_body(sk);
+  const PoseInputs in{style, gestures, speak, weight, idle, joints, legs};
   for (int f = 0; f < frame_count; ++f) {
     const double t = f / fps;
     pose_trunk(m, f, t, in);

@@ -46,7 +46,7 @@ class SynthPipeline : public ::testing::Test {
     synth_write(synth_speaker(ref), dir_->path().string(), "ref");
     SynthSpec test;
     test.duration_s = 15;
-    test.seed = 12;
+    test.seed = 16;  // its speech says "never", which the reference does not: keyword fallbacks
     synth_write(synth_speaker(test), dir_->path().string(), "test");
     ASSERT_EQ(run_cli({"build", "--motion", file("ref.bvh"), "--audio", file("ref.wav"), "--transcript",
                        file("ref.tsv"), "-o", file("ref.gmg")}),

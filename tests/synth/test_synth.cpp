@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "engine/motion/bvh.h"
 #include "engine/motion/motion.h"
 #include "engine/synth/synth.h"
+#include "engine/synth/synth_internal.h"
 #include "tests/test_support.h"
 #include "text/keywords.h"
 #include "text/transcript.h"
@@ -30,24 +32,6 @@ SynthSpec spec_of(double duration, std::uint64_t seed, double style = 0.0) {
   s.seed = seed;
   s.style = style;
   return s;
-}
-
-// World position of joint j at every frame.
-std::vector<glm::dvec3> joint_track(const gmg::Motion& m, int j) {
-  const Eigen::MatrixXd p = gmg::motion_forward_kinematics(m);
-  std::vector<glm::dvec3> out(static_cast<std::size_t>(m.frame_count));
-  for (int f = 0; f < m.frame_count; ++f)
-    out[static_cast<std::size_t>(f)] = {p(f, 3 * Eigen::Index{j}), p(f, 3 * Eigen::Index{j} + 1),
-                                        p(f, 3 * Eigen::Index{j} + 2)};
-  return out;
-}
-
-// Per-frame speed (cm/frame) of a track; speed[f] = |p[f] - p[f-1]|, speed[0] = speed[1].
-std::vector<double> frame_speed(const std::vector<glm::dvec3>& p) {
-  std::vector<double> v(p.size(), 0.0);
-  for (std::size_t f = 1; f < p.size(); ++f) v[f] = glm::length(p[f] - p[f - 1]);
-  if (v.size() > 1) v[0] = v[1];
-  return v;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -223,14 +207,60 @@ TEST(Synth, KeywordsMatchTheLexicon) {
   const gmg::text::Lexicon lex = gmg::text::default_lexicon();
   const std::vector<gmg::text::KeywordEvent> events = gmg::text::detect_keywords(clip.words, lex);
   ASSERT_EQ(events.size(), clip.keyword_times.size());
-  for (std::size_t i = 0; i < events.size(); ++i) EXPECT_DOUBLE_EQ(events[i].time, clip.keyword_times[i]);
+  ASSERT_EQ(clip.keyword_gestures.size(), clip.keyword_times.size());
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_DOUBLE_EQ(events[i].time, clip.keyword_times[i]);
+    EXPECT_NE(clip.keyword_gestures[i], gmg::SynthGesture::None);
+  }
   const double share = static_cast<double>(events.size()) / clip.words.size();
   std::printf("60 s clip: %zu words, %zu keywords (%.0f%%)\n", clip.words.size(), events.size(), 100 * share);
   EXPECT_GT(share, 0.08);
   EXPECT_LT(share, 0.25);
-  bool has_the = false;
-  for (const auto& w : clip.words) has_the = has_the || w.text == "the";
-  EXPECT_TRUE(has_the);
+  // Every gesture kind occurs.
+  for (gmg::SynthGesture g :
+       {gmg::SynthGesture::Open, gmg::SynthGesture::Point, gmg::SynthGesture::Sweep, gmg::SynthGesture::Lift})
+    EXPECT_NE(std::find(clip.keyword_gestures.begin(), clip.keyword_gestures.end(), g), clip.keyword_gestures.end());
+}
+
+// The grammar's words against the lexicon: a word it says with a gesture is a lexicon entry, a
+// word it says without one is not, so a transcript's keywords are exactly the planned ones.
+TEST(Synth, GrammarWordsAreKeywordsExactlyWhenTheyCarryAGesture) {
+  const gmg::text::Lexicon lex = gmg::text::default_lexicon();
+  const std::vector<gmg::synth_internal::GrammarWord> words = gmg::synth_internal::grammar_vocabulary();
+  ASSERT_GT(words.size(), 100u);
+  for (const auto& w : words) EXPECT_EQ(lex.contains(w.text), w.gesture != gmg::SynthGesture::None) << w.text;
+}
+
+// The transcript reads as sentences: each starts with a capital letter and ends with a full
+// stop at the end of a phrase that ends a sentence; commas end the other phrases.
+TEST(Synth, TranscriptIsSentences) {
+  const SynthClip clip = gmg::synth_speaker(spec_of(60.0, 4));
+  ASSERT_GE(clip.phrases.size(), 10u);
+  std::size_t w = 0, sentences = 0;
+  bool sentence_start = true;
+  for (std::size_t k = 0; k < clip.phrases.size(); ++k) {
+    const gmg::SynthPhrase& ph = clip.phrases[k];
+    ASSERT_LT(w, clip.words.size());
+    EXPECT_DOUBLE_EQ(clip.words[w].start, ph.start);
+    if (sentence_start) {
+      EXPECT_TRUE(std::isupper(static_cast<unsigned char>(clip.words[w].text[0]))) << clip.words[w].text;
+    }
+    while (w < clip.words.size() && clip.words[w].end <= ph.end) ++w;
+    const std::string& last = clip.words[w - 1].text;
+    if (k + 1 == clip.phrases.size()) break;  // the clip may end inside a sentence
+    EXPECT_EQ(last.back(), ph.ends_sentence ? '.' : ',') << last;
+    sentence_start = ph.ends_sentence;
+    sentences += ph.ends_sentence ? 1 : 0;
+    const double pause = clip.phrases[k + 1].start - ph.end;
+    if (ph.ends_sentence) {
+      EXPECT_GE(pause, 0.8 - 1e-9);
+      EXPECT_LE(pause, 2.4 + 1e-9);
+    } else {
+      EXPECT_GE(pause, 0.3 - 1e-9);
+      EXPECT_LE(pause, 0.45 + 1e-9);
+    }
+  }
+  EXPECT_GE(sentences, 8u);
 }
 
 // The detector (librosa's onset_detect with backtracking) marks an onset at the local minimum
@@ -296,64 +326,6 @@ TEST(Synth, OnsetsFollowStressedSyllables) {
   EXPECT_GE(total_within50, 0.7 * total_stressed);
   EXPECT_GE(total_within_lead, 0.85 * total_stressed);
   EXPECT_GE(total_peak, 0.95 * total_stressed);
-}
-
-TEST(Synth, MotionIsSmoothVisibleAndFollowsStress) {
-  for (double style : {0.0, 1.0}) {
-    SCOPED_TRACE(style);
-    const SynthClip clip = gmg::synth_speaker(spec_of(40.0, 21, style));
-    const gmg::Motion& m = clip.motion;
-    const double fps = m.fps;
-    std::vector<double> near_stress_speed, pause_speed;
-    for (const char* name : {"RightHand", "LeftHand"}) {
-      const int j = m.skeleton.find(name);
-      ASSERT_GE(j, 0);
-      const std::vector<glm::dvec3> p = joint_track(m, j);
-      const std::vector<double> v = frame_speed(p);
-      const double max_step = *std::max_element(v.begin(), v.end());
-      glm::dvec3 lo = p[0], hi = p[0];
-      for (const auto& x : p) {
-        lo = glm::min(lo, x);
-        hi = glm::max(hi, x);
-      }
-      const double range = glm::length(hi - lo);
-      // Frames within 0.15 s of a stressed syllable vs frames inside pauses between phrases.
-      std::vector<char> near(v.size(), 0), pause(v.size(), 0);
-      for (const auto& syl : clip.syllables)
-        if (syl.stressed)
-          for (int f = static_cast<int>(std::ceil((syl.time - 0.15) * fps)); f <= (syl.time + 0.15) * fps; ++f)
-            if (f >= 0 && f < m.frame_count) near[static_cast<std::size_t>(f)] = 1;
-      for (std::size_t k = 0; k + 1 < clip.phrases.size(); ++k)
-        for (int f = static_cast<int>(std::ceil(clip.phrases[k].end * fps)); f < clip.phrases[k + 1].start * fps; ++f)
-          pause[static_cast<std::size_t>(f)] = 1;
-      double sn = 0, sp = 0;
-      int nn = 0, np = 0;
-      for (std::size_t f = 0; f < v.size(); ++f) {
-        if (near[f]) sn += v[f], ++nn;
-        if (pause[f]) sp += v[f], ++np;
-      }
-      ASSERT_GT(nn, 0);
-      ASSERT_GT(np, 0);
-      std::printf(
-          "style %.0f %s: max step %.2f cm/frame, range %.1f cm, mean speed near stress %.2f, "
-          "in pauses %.2f cm/frame\n",
-          style, name, max_step, range, sn / nn, sp / np);
-      EXPECT_LT(max_step, 5.0);
-      EXPECT_GT(range, 10.0);
-      // The dominant (right) hand carries the beats; the other one joins in more weakly.
-      if (std::string(name) == "RightHand") {
-        EXPECT_GT(sn / nn, 1.2 * (sp / np));
-      }
-    }
-    // No joint jumps either (the root and the head included).
-    const Eigen::MatrixXd p = gmg::motion_forward_kinematics(m);
-    double worst = 0;
-    for (int f = 1; f < m.frame_count; ++f)
-      for (int j = 0; j < m.joint_count(); ++j)
-        worst =
-            std::max(worst, (p.block(f, 3 * Eigen::Index{j}, 1, 3) - p.block(f - 1, 3 * Eigen::Index{j}, 1, 3)).norm());
-    EXPECT_LT(worst, 5.0);
-  }
 }
 
 TEST(Synth, LongClipForBenchmarks) {
