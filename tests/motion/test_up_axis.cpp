@@ -5,8 +5,10 @@
 
 #include <cmath>
 
+#include "engine/motion/motion_file.h"
 #include "engine/motion/up_axis.h"
 #include "engine/synth/synth.h"
+#include "tests/test_support.h"
 
 namespace gmg {
 namespace {
@@ -133,6 +135,23 @@ TEST(UpAxis, RootEulerHintsAreDropped) {
   for (int f = 0; f < m.frame_count; ++f) {
     EXPECT_EQ(m.euler_hints[m.index(f, 0)], glm::dvec3(0.0));
     EXPECT_EQ(m.euler_hints[m.index(f, 1)], glm::dvec3(0.1, 0.2, 0.3));
+  }
+}
+
+TEST(UpAxis, ReadTurnsAZUpFileIntoYUp) {
+  // The Z-up copy written as BVH and read back in Y-up: the joints stand where the Y-up clip's do
+  // (to the file's decimal places).
+  const Motion y = standing_clip();
+  const testing::TempDir dir;
+  motion_write(dir.file("z.bvh"), z_up_copy(y));
+  motion_write(dir.file("y.bvh"), y);
+  const Eigen::MatrixXd expected = motion_forward_kinematics(y);
+  for (const char* name : {"z.bvh", "y.bvh"}) {
+    const Motion read = motion_read_y_up(dir.file(name));
+    const Eigen::MatrixXd p = motion_forward_kinematics(read);
+    ASSERT_EQ(p.rows(), expected.rows());
+    ASSERT_EQ(p.cols(), expected.cols());
+    EXPECT_LT((p - expected).cwiseAbs().maxCoeff(), 1e-3) << name;
   }
 }
 
