@@ -94,6 +94,59 @@ TEST(LowerBody, ChangesAtRunEndsOnlyAtStanceFrames) {
   }
 }
 
+// Three runs of 200 frames (made_stance), the feet of the last one 1 leg length wider (pose
+// dimension 0).
+Stance wide_last_run() {
+  Stance st = made_stance(600, 0, 0);
+  std::vector<float> pose(st.pose.begin(), st.pose.end());
+  for (int f = 400; f < 600; ++f) pose[static_cast<std::size_t>(f) * kStanceDims] = 1.0f;
+  st.pose = pose;
+  return st;
+}
+
+TEST(LowerBody, ChangesGoToTheNearestStance) {
+  // Three runs of 200 frames; the feet of the last run stand 1 leg length wider (pose dimension 0),
+  // so a change from the first two goes into one of them, and a change from the last into the last:
+  // every change's gap is 0 and keeps the pose.
+  const Stance st = wide_last_run();
+  const CaptureRuns runs(600, {199, 399, 599});
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    const LowerPlan plan = plan_lower_body(st, runs, {}, 900, kFps, no_variety(), rng);
+    expect_covering(plan, runs, 900);
+    for (std::size_t k = 1; k < plan.segments.size(); ++k) {
+      const LowerSegment& before = plan.segments[k - 1];
+      const int left = before.source + before.length;
+      EXPECT_EQ(plan.segments[k].gap, 0.0) << "seed " << seed << " change " << k;
+      EXPECT_EQ(left >= 400, plan.segments[k].source >= 400) << "seed " << seed << " change " << k;
+    }
+  }
+}
+
+// BUG (search/lower_body.cpp LowerPlanner::cost): 900 output frames from the two runs of 200 frames
+// of the nearest stance (wide_last_run): once their stretches have been played a couple of times, the reuse term (0.25
+// plays^2: 1 for two plays) outweighs the short-run term (at most 0.5), so a run-end change goes to the rarely played
+// last frames of a run: source 390 or 190, 9 frames before the run ends. The next change is then forced 9 frames later
+// from the run's last frame (199 or 399, no stance frame: the fallback), and the plan ping-pongs between the two run
+// ends in 9-frame segments (seed 2: output 770-806; seeds 3 and 4 too). Expected, as the header
+// says: a run-end change goes to a stance with a long run ahead; no segment but the last shorter
+// than a second, every change made at a stance frame.
+TEST(LowerBody, DISABLED_RunEndChangesGoToLongRuns) {
+  const Stance st = wide_last_run();
+  const CaptureRuns runs(600, {199, 399, 599});
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    const LowerPlan plan = plan_lower_body(st, runs, {}, 900, kFps, no_variety(), rng);
+    expect_covering(plan, runs, 900);
+    for (std::size_t k = 0; k + 1 < plan.segments.size(); ++k) {
+      const LowerSegment& s = plan.segments[k];
+      EXPECT_GE(s.length, 30) << "seed " << seed << ": output " << s.start << " plays " << s.length << " frames from "
+                              << s.source;
+      EXPECT_EQ(st.planted[static_cast<std::size_t>(s.source + s.length)], 1) << "seed " << seed;
+    }
+  }
+}
+
 // Whether the legs are still at every output frame of [from, to), for seeds 1..20.
 void expect_still(const Stance& st, const CaptureRuns& runs, const std::vector<Anchor>& rests, int from, int to) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
