@@ -124,13 +124,14 @@ TEST(LowerBody, ChangesGoToTheNearestStance) {
 }
 
 // BUG (search/lower_body.cpp LowerPlanner::cost): 900 output frames from the two runs of 200 frames
-// of the nearest stance (wide_last_run): once their stretches have been played a couple of times, the reuse term (0.25
-// plays^2: 1 for two plays) outweighs the short-run term (at most 0.5), so a run-end change goes to the rarely played
-// last frames of a run: source 390 or 190, 9 frames before the run ends. The next change is then forced 9 frames later
-// from the run's last frame (199 or 399, no stance frame: the fallback), and the plan ping-pongs between the two run
-// ends in 9-frame segments (seed 2: output 770-806; seeds 3 and 4 too). Expected, as the header
-// says: a run-end change goes to a stance with a long run ahead; no segment but the last shorter
-// than a second, every change made at a stance frame.
+// of the nearest stance (wide_last_run). Once their stretches have been played a couple of times,
+// the reuse term (0.25 plays^2: 1 for two plays) outweighs the short-run term (at most 0.5), so a
+// run-end change goes to the rarely played last frames of a run: source 390 or 190, 9 frames before
+// the run ends. The next change is then forced 9 frames later from the run's last frame (199 or
+// 399, no stance frame: the fallback), and the plan ping-pongs between the two run ends in 9-frame
+// segments (seed 2: output 770-806; seeds 3, 4 and 5 too). Expected, as the header says: a run-end
+// change goes to a stance with a long run ahead; no segment but the last shorter than a second,
+// every change made at a stance frame.
 TEST(LowerBody, DISABLED_RunEndChangesGoToLongRuns) {
   const Stance st = wide_last_run();
   const CaptureRuns runs(600, {199, 399, 599});
