@@ -139,6 +139,31 @@ TEST(BodyLayers, SynthSpeakerClipSplitsTheSameWay) {
   EXPECT_EQ(names_of(s, l.spine), (std::vector<std::string>{"Spine", "Spine1", "Spine2"}));
 }
 
+TEST(BodyLayers, TwoEndsPerFootPartAtTheAnkleNotTheHips) {
+  // A heel end under each foot as well as the toe, all four on the floor: the two lowest ends (left
+  // toe and heel) part at the ankle, low down, so the feet are the left toe and the right toe.
+  Skeleton s = synth_skeleton();
+  for (const char* side : {"Left", "Right"}) {
+    const int foot = s.find(std::string(side) + "Foot");
+    Joint heel;
+    heel.name = std::string(side) + "Heel";
+    heel.parent = foot;
+    heel.offset = glm::dvec3(0, -6, -4);
+    heel.channels = {Channel::Zrotation, Channel::Xrotation, Channel::Yrotation};
+    s.joints.insert(s.joints.begin() + foot + 2, heel);  // after the toe, whose parent is foot
+    for (std::size_t j = static_cast<std::size_t>(foot) + 3; j < s.joints.size(); ++j)
+      if (s.joints[j].parent > foot + 1) ++s.joints[j].parent;
+  }
+  ASSERT_EQ(s.joints[static_cast<std::size_t>(s.find("LeftHeel"))].parent, s.find("LeftFoot"));
+  ASSERT_EQ(s.joints[static_cast<std::size_t>(s.find("RightToeBase"))].parent, s.find("RightFoot"));
+  const BodyLayers l = find_body_layers(standing(s, {0, 95, 0}));
+  ASSERT_TRUE(l.layered());
+  EXPECT_EQ(l.hip_branch, 0);
+  EXPECT_EQ(l.feet, indices(s, {"LeftToeBase", "RightToeBase"}));
+  EXPECT_EQ(l.legs[0], indices(s, {"LeftUpLeg", "LeftLeg", "LeftFoot", "LeftToeBase", "LeftHeel"}));
+  EXPECT_EQ(l.legs[1], indices(s, {"RightUpLeg", "RightLeg", "RightFoot", "RightToeBase", "RightHeel"}));
+}
+
 TEST(BodyLayers, FollowsTheFirstFrameNotTheOffsets) {
   // The left leg raised forward to hip height in frame 0: its toe is no longer among the lowest
   // ends, so no two legs reach the floor: nothing is layered.
