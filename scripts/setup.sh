@@ -1,8 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs that are missing, then configures and builds
 # build/ (Release). Idempotent: a second run installs nothing and rebuilds only what changed.
+# Usage: scripts/setup.sh [--blender]. --blender also installs Debian's Blender (about 80 packages,
+# 500 MB), which the add-on (engine/blender) and its test need; without it that test is skipped,
+# and CI does not install it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+with_blender=0
+for arg in "$@"; do
+  case $arg in
+    --blender) with_blender=1 ;;
+    *) echo "setup: unknown option '$arg' (usage: scripts/setup.sh [--blender])" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake pkg-config git clang-format
@@ -11,6 +21,7 @@ packages=(
   libjemalloc-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
 )
+if ((with_blender)); then packages+=(blender); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
