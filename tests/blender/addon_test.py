@@ -15,6 +15,7 @@ import time
 import wave
 
 import bpy
+import mathutils
 import numpy as np
 
 zip_path, data, gmg_binary, work = sys.argv[sys.argv.index("--") + 1:]
@@ -100,6 +101,47 @@ for frame in (1, 1906):
     error = np.abs(world_heads(obj, source.joint_names, frame) - z_up(source.positions[frame - 1])).max()
     assert error <= MM, f"imported frame {frame}: {error} m"
 obj.animation_data.action = action
+
+# ---- An armature of other rest orientations, keyed in Euler angles ---------------------------
+# Bones rolled and pointing elsewhere than the add-on makes them: reenact onto it gives the same
+# world positions, and its Euler-keyed action reads back as the same gmg motion.
+import gmg_blender.armature as arm  # noqa: E402
+
+other = arm.create_armature(bpy.context, "rolled", source.joint_names, source.parents, source.offsets)
+bpy.ops.object.mode_set(mode="EDIT")
+for j, b in enumerate(other.data.edit_bones):
+    b.tail = b.head + mathutils.Vector((0.03, -0.02, 0.05)) * (1 + j % 3)
+    b.roll = 0.4 + 0.1 * j
+bpy.ops.object.mode_set(mode="OBJECT")
+bpy.ops.gmg.reenact(graph=graph, audio=new + ".wav", transcript=new + ".TextGrid", seed=7)
+for frame in (1, 600, 1500):
+    error = np.abs(world_heads(other, expected.joint_names, frame) - z_up(expected.positions[frame - 1])).max()
+    assert error <= MM, f"rolled armature, frame {frame}: {error} m"
+quaternions = other.animation_data.action
+euler = bpy.data.actions.new("euler")
+for j, name in enumerate(source.joint_names):
+    channels = {"rotation_euler": []}
+    for f in range(1, 6):
+        q = [quaternions.fcurves.find(arm.bone_path(name, "rotation_quaternion"), index=i).evaluate(f)
+             for i in range(4)]
+        channels["rotation_euler"].append(tuple(mathutils.Quaternion(q).to_euler("ZXY")))
+    if j == 0:
+        channels["location"] = [[quaternions.fcurves.find(arm.bone_path(name, "location"), index=i).evaluate(f)
+                                 for i in range(3)] for f in range(1, 6)]
+    for channel, values in channels.items():
+        for i in range(3):
+            fc = euler.fcurves.new(arm.bone_path(name, channel), index=i)
+            for f, v in zip(range(1, 6), values):
+                fc.keyframe_points.insert(f, v[i])
+    other.pose.bones[name].rotation_mode = "ZXY"
+read = gmg.Motion(*arm.motion_arrays(other, euler, np.arange(1, 6)), 30)
+error = np.abs(read.positions - expected.positions[:5]).max()
+assert error <= MM, f"the Euler-keyed action read as gmg's motion: {error} m"
+print(f"a rolled armature: reenacted and read back from Euler keys within {error * 1000:.4f} mm")
+rolled = other.data
+bpy.data.objects.remove(other)
+bpy.data.armatures.remove(rolled)
+bpy.context.view_layer.objects.active = obj
 
 # ---- Refusals leave everything as it was ---------------------------------------------------
 before = keys_of(action)
