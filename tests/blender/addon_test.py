@@ -102,6 +102,19 @@ for frame in (1, 1906):
     assert error <= MM, f"imported frame {frame}: {error} m"
 obj.animation_data.action = action
 
+# A BEAT2 .npz with the BVH as its skeleton: the same joints, root-relative positions as the BVH's.
+bpy.ops.gmg.import_motion(filepath=ref + ".npz", skeleton=ref + ".bvh")
+npz = bpy.context.active_object
+assert npz != obj and npz.type == "ARMATURE" and len(npz.data.bones) == 55
+smplx = gmg.read_motion(ref + ".npz", skeleton=ref + ".bvh")
+for frame in (1, 1906):
+    error = np.abs(world_heads(npz, smplx.joint_names, frame) - z_up(smplx.positions[frame - 1])).max()
+    assert error <= MM, f"imported npz frame {frame}: {error} m"
+npz_data = npz.data
+bpy.data.objects.remove(npz)
+bpy.data.armatures.remove(npz_data)
+bpy.context.view_layer.objects.active = obj
+
 # ---- An armature of other rest orientations, keyed in Euler angles ---------------------------
 # Bones rolled and pointing elsewhere than the add-on makes them: reenact onto it gives the same
 # world positions, and its Euler-keyed action reads back as the same gmg motion.
