@@ -77,7 +77,8 @@ def tick():
                 obj = bpy.context.active_object
                 assert obj.animation_data.action.name == "gmg 2_scott_0_2_2 seed 7", obj.animation_data.action.name
                 step["actions"] = sorted(a.name for a in bpy.data.actions)
-                assert bpy.ops.gmg.reenact("INVOKE_DEFAULT", graph=graph, audio=new + ".wav", seed=9) == {"RUNNING_MODAL"}
+                started = bpy.ops.gmg.reenact("INVOKE_DEFAULT", graph=graph, audio=new + ".wav", seed=9)
+                assert started == {"RUNNING_MODAL"}
                 win.event_simulate(type="ESC", value="PRESS")
                 win.event_simulate(type="ESC", value="RELEASE")
             elif n == 3:
