@@ -157,6 +157,11 @@ def use_action(obj, action, bones):
 def replace_keys(action, frames, values):
     """Keys of `action` at `frames` set to `values` (pose_values); every other key kept as it is."""
     for bone, (quaternions, location) in values.items():
+        before = [action.fcurves.find(bone_path(bone, "rotation_quaternion"), index=i) for i in range(4)]
+        if all(before):  # the sign the frame before has, so the curves do not swing the long way into the range
+            q = np.array([fc.evaluate(float(frames[0] - 1)) for fc in before])
+            if np.dot(q, quaternions[0]) < 0:
+                quaternions = -quaternions
         channels = [("rotation_quaternion", quaternions)]
         if location is not None:
             channels.append(("location", location))
