@@ -196,7 +196,7 @@ class KeepingGmg:
     has none: it records what the add-on passes and reenacts the whole speech with the seed asked,
     so the add-on's side (the kept motion it writes, the range in seconds, the keys it replaces)
     is checked either way."""
-    Error, Motion = gmg.Error, gmg.Motion
+    Error, Motion, load = gmg.Error, gmg.Motion, gmg.load
 
     def __init__(self):
         self.kept = self.ranges = None
@@ -221,7 +221,16 @@ def check_regenerated(before, after):
 if "keep" in (gmg.reenact.__doc__ or ""):
     bpy.ops.gmg.regenerate(frame_start=600, frame_end=900, seed=3)
     check_regenerated(before, keys_of(action))
-    print("regenerate 600-900 kept every other frame's keys")
+    # As `gmg reenact --keep` of the seed-7 output over frames 600 to 900 (gmg's 599 to 899) with seed 3.
+    kept = os.path.join(work, "kept.bvh")
+    subprocess.run([gmg_binary, "reenact", "--graph", graph, "--audio", new + ".wav", "--transcript",
+                    new + ".TextGrid", "--seed", "3", "--keep", cli, "--range", f"{599 / 30}:{900 / 30}", "-o", kept],
+                   check=True, capture_output=True)
+    regenerated = gmg.read_motion(kept)
+    for frame in (600, 750, 900):
+        error = np.abs(world_heads(obj, regenerated.joint_names, frame) - z_up(regenerated.positions[frame - 1])).max()
+        assert error <= MM, f"regenerated frame {frame}: {error} m from gmg reenact --keep"
+    print("regenerate 600-900 kept every other frame's keys and equals gmg reenact --keep --range")
 else:
     refused(lambda: bpy.ops.gmg.regenerate(frame_start=600, frame_end=900, seed=3), "keep")
     assert same_keys(keys_of(action), before)

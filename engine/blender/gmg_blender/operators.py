@@ -362,10 +362,21 @@ def regenerate_job(context, frame_start, frame_end, seed, settings=None):
     name, action_name = obj.name, action.name
 
     def work():
+        # The kept motion in the graph's own skeleton (its joints, in its order, with its offsets),
+        # as gmg reenact --keep wants it; the armature may have bones the graph has not.
+        g = gmg.load(graph)
+        skeleton = g.motion
+        index = {n: j for j, n in enumerate(arrays[0])}
+        missing = [n for n in skeleton.joint_names if n not in index]
+        if missing:
+            raise AddonError(f"{graph}: armature '{name}' lacks {len(missing)} of the graph's joints "
+                             f"({', '.join(missing[:5])})")
+        order = [index[n] for n in skeleton.joint_names]
+        kept = skeleton.with_frames(rotations=arrays[3][:, order], root=arrays[4], fps=fps)
         with tempfile.TemporaryDirectory(prefix="gmg_blender_") as folder:
             prev = os.path.join(folder, "kept.bvh")
-            gmg.Motion(*arrays, fps, name=action_name).write(prev)
-            r = gmg.reenact(graph, audio, transcript, keep=prev, ranges=list(span), seed=seed, set=settings)
+            kept.write(prev)
+            r = gmg.reenact(g, audio, transcript, keep=prev, ranges=list(span), seed=seed, set=settings)
             return r.motion.joint_names, r.rotations[first:last + 1], r.root[first:last + 1]
 
     def apply(result):
