@@ -14,6 +14,10 @@ cp -r "$work/inst" "$work/moved"
 rm -rf "$work/inst"
 gmg="$work/moved/bin/gmg"
 test -x "$gmg"
+if [ ! -f "$work/moved/share/gmg/gmg_blender.zip" ]; then  # the Blender add-on, for Preferences > Add-ons > Install
+  echo "FAIL: the install has no share/gmg/gmg_blender.zip"
+  exit 1
+fi
 if grep -aF "$source" "$gmg" >/dev/null; then
   echo "FAIL: the installed binary contains the source path $source"
   exit 1
