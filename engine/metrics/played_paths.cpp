@@ -47,6 +47,17 @@ std::vector<int> ranges_field(const Json& item, const std::string& where) {
   return frames;
 }
 
+// The fields a subsequence and a stretch share: where it starts, how long it lasts (its
+// `length_key`), the graph frames it plays.
+template <typename Json>
+PlayedSegment segment_of(const Json& item, const char* length_key, const std::string& where) {
+  PlayedSegment seg;
+  seg.start_frame = int_field(item, "start_frame", where);
+  seg.length = int_field(item, length_key, where);
+  seg.path = ranges_field(item, where);
+  return seg;
+}
+
 template <typename Json>
 PlayedPaths parse(const Json& rep, const std::string& name) {
   if (!rep.is_object() || !rep.contains("subsequences") || !rep["subsequences"].is_array())
@@ -55,10 +66,7 @@ PlayedPaths parse(const Json& rep, const std::string& name) {
   int k = 0;
   for (const Json& s : rep["subsequences"]) {
     const std::string where = name + ": subsequence " + std::to_string(k++);
-    PlayedSegment seg;
-    seg.start_frame = int_field(s, "start_frame", where);
-    seg.length = int_field(s, "target_length", where);
-    seg.path = ranges_field(s, where);
+    PlayedSegment seg = segment_of(s, "target_length", where);
     const Json& continued = field(s, "continued", where);
     if (!continued.is_boolean()) throw Error(where + ": continued is not true or false");
     seg.continued = continued.template get<bool>();
@@ -77,10 +85,7 @@ PlayedPaths parse(const Json& rep, const std::string& name) {
     k = 0;
     for (const Json& s : stretches) {
       const std::string at = where + " stretch " + std::to_string(k++);
-      PlayedSegment seg;
-      seg.start_frame = int_field(s, "start_frame", at);
-      seg.length = int_field(s, "length", at);
-      seg.path = ranges_field(s, at);
+      PlayedSegment seg = segment_of(s, "length", at);
       const Json& change = field(s, "change", at);
       if (!change.is_string()) throw Error(at + ": change is not a name");
       out.stance_changes += change.template get<std::string>() != "start";
