@@ -82,7 +82,7 @@ struct FoldData {
   NaturalnessReference reference;  // jerk, acceleration, root speed of the truth; step of the reference part
   std::vector<int> wrists, upper;
   LifelikeJoints lifelike_joints;
-  LifelikeReference lifelike;  // of the reference part's pieces
+  LifelikeReference lifelike;      // of the reference part's pieces
   std::vector<double> mean_speed;  // per joint, of the reference part (the beat threshold's scale)
   double pose_variation = 0.0;     // of the reference part
   int reference_frames = 0;
@@ -419,8 +419,8 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
         } else {
           Reenactment re = reenact_events(p.graph, p.test_events, cfg);
           // What `gmg evaluate --report` reads: the upper body's subsequences and the lower body's stretches.
-          paths = played_paths_of(re.report, std::string("the ") + enum_name(kAblationSetupNames, row.setup) +
-                                                 " setup's report");
+          paths = played_paths_of(re.report,
+                                  std::string("the ") + enum_name(kAblationSetupNames, row.setup) + " setup's report");
           plan = std::move(re.plan);
           motion = std::move(re.motion);
           if (row.setup == AblationSetup::Full)

@@ -71,7 +71,7 @@ struct AblationInputs {
 struct AblationOptions {
   int folds = 6;
   std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5};
-  MetricParams metrics;    // Hellinger binning among others
+  MetricParams metrics;  // Hellinger binning among others
   LifelikeParams lifelike;
   int control_shifts = 8;  // circular shifts of the test audio for the sync control
   double min_shift_s = 2.0;

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iterator>
 #include <functional>
+#include <iterator>
 #include <numeric>
 
 #include "engine/ablation/ablation.h"
@@ -84,8 +84,7 @@ const std::vector<Column>& columns() {
       {"foot_slide_ratio", "foot slide ×", Table::Lifelike, "%.2f", [](S s) { return s.lifelike.foot_slide_ratio; }},
       {"foot_slide_share", "foot slide", Table::CsvOnly, "%.3f", [](S s) { return s.lifelike.foot_slide_share; }},
       {"junctions_per_min", "junctions/min", Table::Lifelike, "%.1f", [](S s) { return s.paths.junctions_per_min; }},
-      {"junction_gap_median_cm", "gap cm", Table::Lifelike, "%.1f",
-       [](S s) { return s.paths.junction_gap_median_cm; }},
+      {"junction_gap_median_cm", "gap cm", Table::Lifelike, "%.1f", [](S s) { return s.paths.junction_gap_median_cm; }},
       {"stance_changes_per_min", "stance/min", Table::Lifelike, "%.1f",
        [](S s) { return s.paths.stance_changes_per_min; }},
       {"max_plays_upper", "plays up", Table::Lifelike, "%.1f",
@@ -217,9 +216,8 @@ std::string ablation_markdown(const AblationResult& result) {
          "; against the reference part: knee share × " + format("%.2f", truth_mean(fold_columns[2].get).mean) +
          ", jerk p99 × " + format("%.2f", truth_mean(fold_columns[3].get).mean) + ", still run × " +
          format("%.2f", truth_mean(fold_columns[4].get).mean) + ", foot slide × " +
-         format("%.2f", truth_mean(fold_columns[5].get).mean) +
-         ". Full system, geometric mean over folds: jerk × " + format("%.2f", std::exp(log_jerk / n)) + ", acc × " +
-         format("%.2f", std::exp(log_acc / n)) + ".\n";
+         format("%.2f", truth_mean(fold_columns[5].get).mean) + ". Full system, geometric mean over folds: jerk × " +
+         format("%.2f", std::exp(log_jerk / n)) + ", acc × " + format("%.2f", std::exp(log_acc / n)) + ".\n";
   return out;
 }
 

@@ -54,7 +54,6 @@ void check_length(const Motion& m, const std::string& name) {
                 ", the metrics need at least 4 (jerk is a third difference)");
 }
 
-
 // A value, or null where a metric is undefined (NaN): JSON has no NaN, and null reads back alike.
 nlohmann::ordered_json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
@@ -62,8 +61,8 @@ nlohmann::ordered_json number_or_null(double v) {
 
 // The lifelike metrics (lifelike.h against the reference's clips, else the truth; played_paths.h
 // from the report's paths).
-nlohmann::ordered_json lifelike_json(const EvaluateData& data, const Eigen::MatrixXd& gen,
-                                     const LifelikeParams& params, nlohmann::ordered_json& notes) {
+nlohmann::ordered_json lifelike_json(const EvaluateData& data, const Eigen::MatrixXd& gen, const LifelikeParams& params,
+                                     nlohmann::ordered_json& notes) {
   const Motion& generated = *data.generated;
   const double scale = length_unit_to_cm(generated.skeleton);
   const LifelikeJoints joints = lifelike_joints(generated.skeleton);
@@ -72,7 +71,8 @@ nlohmann::ordered_json lifelike_json(const EvaluateData& data, const Eigen::Matr
   for (const Motion* clip : data.reference)
     reference.push_back(lifelike_facts(motion_forward_kinematics(*clip) * scale, clip->fps, joints, params));
   if (reference.empty() && data.truth)
-    reference.push_back(lifelike_facts(motion_forward_kinematics(*data.truth) * scale, data.truth->fps, joints, params));
+    reference.push_back(
+        lifelike_facts(motion_forward_kinematics(*data.truth) * scale, data.truth->fps, joints, params));
   if (!reference.empty()) {
     const LifelikeMotion m = lifelike_motion(lifelike_facts(gen, generated.fps, joints, params),
                                              lifelike_reference(reference, params), params);

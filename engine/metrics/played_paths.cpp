@@ -109,14 +109,15 @@ std::vector<int> played_frames(const std::vector<PlayedSegment>& segments) {
 }
 
 int back_jumps(const std::vector<PlayedSegment>& segments, double fps, double window_s) {
-  const double window = window_s * fps;  // output frames
+  const double window = window_s * fps;         // output frames
   std::unordered_map<int, double> last_played;  // graph frame -> output frame it was last read at
   int jumps = 0, previous = -1;
   for (const PlayedSegment& s : segments) {
     const std::size_t n = s.path.size();
     for (std::size_t i = 0; i < n; ++i) {
       const int f = s.path[i];
-      const double at = s.start_frame + (n > 1 ? static_cast<double>(i) * (s.length - 1) / static_cast<double>(n - 1) : 0.0);
+      const double at =
+          s.start_frame + (n > 1 ? static_cast<double>(i) * (s.length - 1) / static_cast<double>(n - 1) : 0.0);
       // A new piece that is not the natural continuation of the one before.
       if (previous >= 0 && f != previous + 1) {
         const auto it = last_played.find(f);

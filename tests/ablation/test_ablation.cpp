@@ -165,10 +165,10 @@ TEST_F(AblationRun, TablesHaveTheColumnsAndRows) {
                          0),
             0u)
       << header;
-  for (const char* name : {"knee_share_ratio", "knee_p90_deg", "body_jerk_ratio", "body_jerk_p99_ratio",
-                           "still_longest_ratio", "still_longest_s", "foot_slide_ratio", "foot_slide_share",
-                           "junctions_per_min", "junction_gap_median_cm", "stance_changes_per_min", "max_plays_upper",
-                           "max_plays_lower", "back_jumps_upper", "back_jumps_lower"}) {
+  for (const char* name :
+       {"knee_share_ratio", "knee_p90_deg", "body_jerk_ratio", "body_jerk_p99_ratio", "still_longest_ratio",
+        "still_longest_s", "foot_slide_ratio", "foot_slide_share", "junctions_per_min", "junction_gap_median_cm",
+        "stance_changes_per_min", "max_plays_upper", "max_plays_lower", "back_jumps_upper", "back_jumps_lower"}) {
     EXPECT_NE(header.find("," + std::string(name) + "," + name + "_sd"), std::string::npos) << name;
   }
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8);  // header + 7 setups

@@ -138,11 +138,11 @@ TEST_F(Evaluate, CommandLineJsonHasTheLifelikeFields) {
   const nlohmann::json j = nlohmann::json::parse(e.out);
   const nlohmann::json& l = j.at("lifelike");
   EXPECT_EQ(l["against"], "reference");
-  for (const char* key : {"knee_share_ratio", "knee_p90_deg", "reference_knee_p90_deg", "body_jerk_ratio",
-                          "body_jerk_p99_ratio", "still_longest_ratio", "still_longest_s", "reference_still_longest_s",
-                          "foot_slide_ratio", "foot_slide_share", "reference_foot_slide_share", "junctions_per_min",
-                          "junction_gap_median_cm", "stance_changes_per_min", "max_plays_upper", "max_plays_lower",
-                          "back_jumps_upper", "back_jumps_lower", "coverage"}) {
+  for (const char* key :
+       {"knee_share_ratio", "knee_p90_deg", "reference_knee_p90_deg", "body_jerk_ratio", "body_jerk_p99_ratio",
+        "still_longest_ratio", "still_longest_s", "reference_still_longest_s", "foot_slide_ratio", "foot_slide_share",
+        "reference_foot_slide_share", "junctions_per_min", "junction_gap_median_cm", "stance_changes_per_min",
+        "max_plays_upper", "max_plays_lower", "back_jumps_upper", "back_jumps_lower", "coverage"}) {
     ASSERT_TRUE(l.contains(key)) << key << " missing from " << l.dump();
     // A ratio over a reference value of 0 is null; everything else is a number.
     if (std::string(key) != "foot_slide_ratio") {

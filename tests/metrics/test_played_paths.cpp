@@ -140,7 +140,8 @@ TEST(PlayedPaths, AMalformedReportNamesTheFileAndTheField) {
   r = nlohmann::json::parse(kReport);
   r["subsequences"][0]["graph_ranges"] = {{0, 2000000000}};
   EXPECT_NE(error_of(r).find("r.json: subsequence 0: a graph range"), std::string::npos);
-  EXPECT_EQ(error_of(nlohmann::json::parse("{\"frames\": 3}")), "r.json: not a gmg reenactment report (no subsequences)");
+  EXPECT_EQ(error_of(nlohmann::json::parse("{\"frames\": 3}")),
+            "r.json: not a gmg reenactment report (no subsequences)");
 }
 
 }  // namespace
