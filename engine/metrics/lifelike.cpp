@@ -27,6 +27,13 @@ Eigen::Vector3d joint_at(const Eigen::MatrixXd& pos, Eigen::Index t, int j) {
 
 double ratio_or_undefined(double a, double b) { return b > 0.0 ? a / b : LifelikeMotion::kUndefined; }
 
+// A value must clear a reference percentile by this much to count as beyond it. A capture's legs
+// often hold one pose for many frames, so the percentile equals many bends (or speeds) exactly,
+// and rounding (the same rotations read from BVH text or from an .npz) would otherwise flip those
+// ties; nothing physical is this close to a threshold.
+constexpr double kKneeTieDeg = 1e-6;
+constexpr double kSpeedTieCmS = 1e-6;
+
 }  // namespace
 
 void check_lifelike_params(const LifelikeParams& p) {
@@ -64,7 +71,8 @@ LifelikeJoints lifelike_joints(const Skeleton& s) {
   for (int j = 0; j < n; ++j) {
     const std::string name = ascii_lower(s.joints[static_cast<std::size_t>(j)].name);
     const std::vector<int>& kids = children[static_cast<std::size_t>(j)];
-    const bool knee = name.find("knee") != std::string::npos || (ends_with_ci(name, "leg") && !ends_with_ci(name, "upleg"));
+    const bool knee =
+        name.find("knee") != std::string::npos || (ends_with_ci(name, "leg") && !ends_with_ci(name, "upleg"));
     const int parent = s.joints[static_cast<std::size_t>(j)].parent;
     if (knee && parent >= 0 && !kids.empty()) {
       int child = kids.front();
@@ -186,7 +194,8 @@ LifelikeReference lifelike_reference(const std::vector<LifelikeFacts>& clips, co
   r.jerk_p99 = percentile(jerk_max, params.jerk_percentile);
   r.still_speed_cm_s = percentile(speed_max, params.still_percentile);
   for (const LifelikeFacts& c : clips)
-    r.still_longest_frames = std::max(r.still_longest_frames, longest_run_below(c.speed_frame_max, r.still_speed_cm_s));
+    r.still_longest_frames =
+        std::max(r.still_longest_frames, longest_run_below(c.speed_frame_max, r.still_speed_cm_s - kSpeedTieCmS));
   if (feet && slide_of > 0) r.foot_slide_share = static_cast<double>(slide_frames) / static_cast<double>(slide_of);
   return r;
 }
@@ -196,7 +205,7 @@ LifelikeMotion lifelike_motion(const LifelikeFacts& m, const LifelikeReference& 
   LifelikeMotion s;
   if (!m.knee_bend_deg.empty() && std::isfinite(r.knee_p90_deg)) {
     const auto bent = std::count_if(m.knee_bend_deg.begin(), m.knee_bend_deg.end(),
-                                    [&](double b) { return b > r.knee_p90_deg; });
+                                    [&](double b) { return b > r.knee_p90_deg + kKneeTieDeg; });
     const double share = static_cast<double>(bent) / static_cast<double>(m.knee_bend_deg.size());
     s.knee_share_ratio = share / ((100.0 - params.knee_percentile) / 100.0);
     s.knee_p90_deg = percentile(m.knee_bend_deg, params.knee_percentile);
@@ -207,7 +216,7 @@ LifelikeMotion lifelike_motion(const LifelikeFacts& m, const LifelikeReference& 
     s.body_jerk_p99_ratio = ratio_or_undefined(percentile(m.jerk_frame_max, params.jerk_percentile), r.jerk_p99);
   }
   if (!m.speed_frame_max.empty()) {
-    const int longest = longest_run_below(m.speed_frame_max, r.still_speed_cm_s);
+    const int longest = longest_run_below(m.speed_frame_max, r.still_speed_cm_s - kSpeedTieCmS);
     s.still_longest_ratio = ratio_or_undefined(longest, r.still_longest_frames);
     s.still_longest_s = longest / m.fps;
     s.reference_still_longest_s = r.still_longest_frames / r.fps;

@@ -19,12 +19,12 @@
 namespace gmg {
 
 struct LifelikeParams {
-  double knee_percentile = 90.0;    // the reference's knee bend above which a frame counts as deeply bent
-  double jerk_percentile = 99.0;    // of the per-frame largest jerk: how bad the worst moments are
-  double still_percentile = 5.0;    // the reference's speed under which a frame is still
+  double knee_percentile = 90.0;     // the reference's knee bend above which a frame counts as deeply bent
+  double jerk_percentile = 99.0;     // of the per-frame largest jerk: how bad the worst moments are
+  double still_percentile = 5.0;     // the reference's speed under which a frame is still
   double foot_low_percentile = 5.0;  // a foot's low height: this percentile of its own height
-  double foot_height_cm = 3.0;      // a foot this close to its low height stands on the floor
-  double foot_speed_cm_s = 10.0;    // ... and slides when it moves faster than this horizontally
+  double foot_height_cm = 3.0;       // a foot this close to its low height stands on the floor
+  double foot_speed_cm_s = 10.0;     // ... and slides when it moves faster than this horizontally
   double back_jump_window_s = 10.0;  // a piece starting at a frame played this recently jumps back
 };
 
@@ -92,7 +92,8 @@ LifelikeReference lifelike_reference(const std::vector<LifelikeFacts>& clips, co
 // The scores; NaN where a metric is undefined (no knees or feet, a reference value of 0).
 struct LifelikeMotion {
   static constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
-  // Share of frames whose knee bend exceeds the reference's knee_p90_deg, over
+  // Share of frames whose knee bend exceeds the reference's knee_p90_deg (by more than 1e-6
+  // degrees: rounding at a tie does not count; likewise a still frame is 1e-6 cm/s below), over
   // (100 - knee_percentile) / 100, the reference's own share: 1 = bent as often as the speaker.
   // Field names say the default percentiles (LifelikeParams).
   double knee_share_ratio = kUndefined;

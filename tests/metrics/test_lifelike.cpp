@@ -115,6 +115,21 @@ TEST(Lifelike, KneeShareCountsFramesBentBeyondTheReferencesNinetiethPercentile) 
   EXPECT_NEAR(self.knee_share_ratio, 1.0, 1e-9);
 }
 
+// Legs that hold one pose: the 90th percentile equals every bend, and a bend that differs from it
+// by rounding alone (1e-9 degrees) is not beyond it; one bent a degree more is.
+TEST(Lifelike, KneeShareIgnoresRoundingAtATie) {
+  const LifelikeParams params;
+  const LifelikeJoints j = leg_joints();
+  const LifelikeReference ref =
+      lifelike_reference({lifelike_facts(bending_leg(std::vector<double>(10, 30.0)), 30, j, params)}, params);
+  EXPECT_NEAR(ref.knee_p90_deg, 30.0, 1e-9);
+  const std::vector<double> rounded = {30, 30, 30 + 1e-9, 30 + 1e-9, 30, 30, 30, 30, 30, 30};
+  EXPECT_EQ(lifelike_motion(lifelike_facts(bending_leg(rounded), 30, j, params), ref, params).knee_share_ratio, 0.0);
+  const std::vector<double> bent = {30, 30, 31, 31, 30, 30, 30, 30, 30, 30};
+  EXPECT_NEAR(lifelike_motion(lifelike_facts(bending_leg(bent), 30, j, params), ref, params).knee_share_ratio, 2.0,
+              1e-9);
+}
+
 // One body joint moving along x by the given steps (cm per frame); `root_cubed` moves the root by
 // root_cubed * t^3 (the joint with it), which the root-relative metrics must not see.
 Eigen::MatrixXd stepping_joint(const std::vector<double>& steps, double root_cubed = 0.0) {
