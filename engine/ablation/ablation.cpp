@@ -12,8 +12,10 @@
 #include "engine/metrics/sync.h"
 #include "engine/motion/cleanup.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/up_axis.h"
 #include "engine/pipeline/pipeline.h"
 #include "search/initialisation.h"
+#include "search/junction.h"
 #include "text/transcript.h"
 
 namespace gmg {
@@ -79,7 +81,8 @@ struct FoldData {
   Eigen::MatrixXd truth_pos;
   NaturalnessReference reference;  // jerk, acceleration, root speed of the truth; step of the reference part
   std::vector<int> wrists, upper;
-  std::vector<Leg> legs;
+  LifelikeJoints lifelike_joints;
+  LifelikeReference lifelike;      // of the reference part's pieces
   std::vector<double> mean_speed;  // per joint, of the reference part (the beat threshold's scale)
   double pose_variation = 0.0;     // of the reference part
   int reference_frames = 0;
@@ -87,6 +90,7 @@ struct FoldData {
 };
 
 FoldData prepare_fold(const Recording& rec, const TimeFold& split, const AblationOptions& options) {
+  const LifelikeParams& lp = options.lifelike;
   FoldData f;
   f.split = split;
   f.fps = rec.motion.fps;
@@ -107,8 +111,11 @@ FoldData prepare_fold(const Recording& rec, const TimeFold& split, const Ablatio
   // Mean joint speeds and pose variation of the reference part: its pieces joined (the one seam
   // between two pieces changes neither measurably).
   Eigen::MatrixXd ref_pos;
+  f.lifelike_joints = lifelike_joints(rec.motion.skeleton);
+  std::vector<LifelikeFacts> pieces;
   for (const auto& [a, b] : split.reference) {
     const Eigen::MatrixXd p = motion_forward_kinematics(motion_slice(rec.motion, a, b)) * f.scale;
+    pieces.push_back(lifelike_facts(p, f.fps, f.lifelike_joints, lp));
     Eigen::MatrixXd joined(ref_pos.rows() + p.rows(), p.cols());
     joined << ref_pos, p;
     ref_pos.swap(joined);
@@ -116,7 +123,7 @@ FoldData prepare_fold(const Recording& rec, const TimeFold& split, const Ablatio
   }
   f.wrists = wrist_joints(rec.motion.skeleton);
   f.upper = upper_body_joints(rec.motion.skeleton);
-  f.legs = find_legs(rec.motion.skeleton);
+  f.lifelike = lifelike_reference(pieces, lp);
   f.mean_speed = joint_mean_speeds(ref_pos, f.fps);
   f.pose_variation = pose_variation(ref_pos);
   f.control = sync_control(f.test_audio, options.control_shifts, options.min_shift_s);
@@ -165,6 +172,28 @@ std::vector<int> source_frames(const Plan& plan) {
   std::vector<int> out;
   for (const PlannedSegment& s : plan.segments) out.insert(out.end(), s.path.begin(), s.path.end());
   return out;
+}
+
+// The baselines' plans say where they continue and how far each junction jumps, as the planner's
+// do (PlannedSegment continued, junction_gap), so their path metrics read alike.
+void mark_junctions(Plan& plan, const MotionGraph& g) {
+  JunctionCost junction(g);
+  auto continues = [&](int f) { return f + 1 < g.frame_count() && !(g.node(f).kinds & kBreakNode); };
+  for (std::size_t k = 1; k < plan.segments.size(); ++k) {
+    PlannedSegment& seg = plan.segments[k];
+    const int last = plan.segments[k - 1].path.back();
+    seg.junction_from = continues(last) ? last + 1 : last;
+    seg.continued = continues(last) && seg.path.front() == last + 1;
+    seg.junction_gap = seg.continued ? 0.0 : junction.largest_joint_gap(seg.junction_from, seg.path.front());
+  }
+}
+
+// The paths of a plan whose whole body follows it (the baselines).
+PlayedPaths played_paths_of_plan(const Plan& plan, double scale) {
+  PlayedPaths p;
+  for (const PlannedSegment& s : plan.segments)
+    p.upper.push_back({s.sub.start, s.sub.length, s.path, s.continued, s.transitions_inside, s.junction_gap * scale});
+  return p;
 }
 
 // Frames f whose run (no break node before its end) reaches f + len - 1.
@@ -254,21 +283,18 @@ SyncScores sync_scores(const Eigen::MatrixXd& pos, const FoldData& fold, const M
   return s;
 }
 
-BehaviourScores behaviour_scores(const Eigen::MatrixXd& pos, const FoldData& fold) {
-  BehaviourScores b;
-  b.foot_slide = foot_slide_share(pos, fold.fps, fold.legs);
-  const Stillness still = stillness(pos, fold.fps, fold.upper);
-  b.still_share = still.share;
-  b.still_longest_s = still.longest_s;
-  return b;
+LifelikeMotion lifelike_scores(const Eigen::MatrixXd& pos, const FoldData& fold, const LifelikeParams& lp) {
+  return lifelike_motion(lifelike_facts(pos, fold.fps, fold.lifelike_joints, lp), fold.lifelike, lp);
 }
 
-AblationScore score(const Motion& m, const Eigen::MatrixXd& pos, const Plan& plan, const FoldData& fold,
-                    const MetricParams& mp) {
+AblationScore score(const Motion& m, const Eigen::MatrixXd& pos, const Plan& plan, const PlayedPaths& paths,
+                    const FoldData& fold, const AblationOptions& options) {
+  const MetricParams& mp = options.metrics;
   AblationScore s;
   s.syn = metric_syn(pos, fold.truth_pos, fold.fps);
   s.sync = sync_scores(pos, fold, mp);
-  s.behaviour = behaviour_scores(pos, fold);
+  s.lifelike = lifelike_scores(pos, fold, options.lifelike);
+  s.paths = lifelike_paths(paths, fold.fps, m.duration(), options.lifelike);
   s.div = metric_div(pos, fold.fps, mp);
   s.hellinger = metric_hellinger_speed(pos, fold.truth_pos, fold.fps, {}, mp);
   if (!fold.wrists.empty()) s.hellinger_wrists = metric_hellinger_speed(pos, fold.truth_pos, fold.fps, fold.wrists, mp);
@@ -280,9 +306,7 @@ AblationScore score(const Motion& m, const Eigen::MatrixXd& pos, const Plan& pla
   s.step_share = n.step_share;
   const std::vector<int> sources = source_frames(plan);
   s.transitions_per_s = transitions_per_second(source_transitions(sources), m.duration());
-  const Reuse reuse = reference_reuse(sources, fold.reference_frames);
-  s.max_plays_per_min = m.duration() > 0.0 ? reuse.max_plays / (m.duration() / 60.0) : 0.0;
-  s.coverage = reuse.coverage;
+  s.coverage = reference_reuse(sources, fold.reference_frames).coverage;
   s.failures = plan.failure_count();
   s.subsequences = static_cast<int>(plan.segments.size());
   return s;
@@ -314,6 +338,9 @@ Recording read_recording(const AblationInputs& in, const Config& base) {
   Recording rec;
   rec.name = in.motion;
   rec.motion = motion_read(in.motion, in.skeleton);
+  // In Y-up, as a graph's clips are (engine/motion/up_axis.h): the truth, the graph and the outputs
+  // share the frame the metrics measure floors and heights in.
+  motion_to_y_up(rec.motion, resolve_up_axis(rec.motion, base.graph.up));
   motion_lock_and_smooth(rec.motion, base.cleanup.lock_joints, base.cleanup.smooth_window, base.cleanup.smooth_order,
                          in.motion);
   rec.sound = audio::read_audio(in.audio);
@@ -360,7 +387,7 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
   for (const FoldData& fold : prepared_folds) {
     const TimeFold& split = fold.split;
     result.truth.push_back(
-        {sync_scores(fold.truth_pos, fold, options.metrics), behaviour_scores(fold.truth_pos, fold)});
+        {sync_scores(fold.truth_pos, fold, options.metrics), lifelike_scores(fold.truth_pos, fold, options.lifelike)});
     // Each setup's outputs of this fold, one per seed, for the distance between seeds.
     std::vector<std::vector<Eigen::MatrixXd>> outputs(result.rows.size());
     // Setups that agree on the graph parameters share one graph and one test analysis.
@@ -382,12 +409,18 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
         std::mt19937_64 rng(seed);
         Plan plan;
         Motion motion;
+        PlayedPaths paths;
         if (row.setup == AblationSetup::Contiguous || row.setup == AblationSetup::RandomChunks) {
           plan = row.setup == AblationSetup::Contiguous ? contiguous_plan(p.graph, test_frames, rng)
                                                         : random_chunks_plan(p.graph, test_frames, full_chunk, rng);
           motion = assemble_motion(p.graph, plan, assembly_params(cfg));
+          mark_junctions(plan, p.graph);
+          paths = played_paths_of_plan(plan, fold.scale);
         } else {
           Reenactment re = reenact_events(p.graph, p.test_events, cfg);
+          // What `gmg evaluate --report` reads: the upper body's subsequences and the lower body's stretches.
+          paths = played_paths_of(re.report,
+                                  std::string("the ") + enum_name(kAblationSetupNames, row.setup) + " setup's report");
           plan = std::move(re.plan);
           motion = std::move(re.motion);
           if (row.setup == AblationSetup::Full)
@@ -395,7 +428,7 @@ AblationResult ablation_run(const AblationInputs& inputs, const AblationOptions&
                                                                   static_cast<double>(plan.segments.size()))));
         }
         outputs[r].push_back(motion_forward_kinematics(motion) * fold.scale);
-        row.scores.push_back(score(motion, outputs[r].back(), plan, fold, options.metrics));
+        row.scores.push_back(score(motion, outputs[r].back(), plan, paths, fold, options));
         row.scores.back().test_onsets = static_cast<int>(p.test_events.onset_frames.size());
       }
     }

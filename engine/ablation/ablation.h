@@ -17,9 +17,10 @@
 // correlation and the kinematic beat consistency, each with its lift over the other folds'
 // speech, the first two also over shifted audio); naturalness ratios (jerk, acceleration and root
 // speed to the truth's; jump ratio and share of steps above the reference part's 99.9th percentile
-// step), Hellinger (all joints, wrists), transitions per second; behaviour (foot sliding, rest,
-// reuse and coverage of the reference, distance between seeds); failures. Mean and sample sd over
-// folds x seeds.
+// step), Hellinger (all joints, wrists), transitions per second; lifelike (engine/metrics/lifelike.h
+// against the fold's reference part: knee share, body jerk, still run, foot slide; played_paths.h
+// from the plans: junctions, stance changes, plays, back-jumps, coverage); distance between seeds;
+// failures. Mean and sample sd over folds x seeds (undefined values left out).
 #pragma once
 
 #include <cstdint>
@@ -28,7 +29,9 @@
 
 #include "engine/config/config.h"
 #include "engine/core/enum_names.h"
+#include "engine/metrics/lifelike.h"
 #include "engine/metrics/metrics.h"
+#include "engine/metrics/played_paths.h"
 
 namespace gmg {
 
@@ -68,7 +71,8 @@ struct AblationInputs {
 struct AblationOptions {
   int folds = 6;
   std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5};
-  MetricParams metrics;    // Hellinger binning among others
+  MetricParams metrics;  // Hellinger binning among others
+  LifelikeParams lifelike;
   int control_shifts = 8;  // circular shifts of the test audio for the sync control
   double min_shift_s = 2.0;
 };
@@ -82,23 +86,16 @@ struct SyncScores {
   double beat_bc = 0, beat_bc_lift = 0, beat_bc_mismatched_sd = 0;
 };
 
-// What the behaviour metrics say of one motion (engine/metrics/behaviour.h).
-struct BehaviourScores {
-  double foot_slide = 0;       // share of frames with a sliding foot
-  double still_share = 0;      // share of still frames
-  double still_longest_s = 0;  // longest still run
-};
-
 // One setup on one fold with one seed.
 struct AblationScore {
   SyncScores sync;
-  BehaviourScores behaviour;
+  LifelikeMotion lifelike;  // against the fold's reference part (NaN where undefined)
+  LifelikePaths paths;      // the upper body's plan and, when layered, the lower body's stretches
   double syn = 0;
   double div = 0, hellinger = 0, hellinger_wrists = 0;
   double jerk_ratio = 0, acc_ratio = 0, root_speed_ratio = 0, jump_ratio = 0, step_share = 0;
   double transitions_per_s = 0;
-  double max_plays_per_min = 0;  // most plays of one reference frame, per minute of output
-  double coverage = 0;           // share of the fold's reference frames played
+  double coverage = 0;  // share of the fold's reference frames the upper body played
   // The smallest distance between this fold's outputs of two seeds (motion_distance), over the
   // reference part's pose_variation; the same for every seed of a fold (0 with one seed).
   double seed_distance = 0;
@@ -115,7 +112,7 @@ struct AblationRow {
 // The truth's own scores per fold: what the recording itself allows a metric to see.
 struct TruthSync {
   SyncScores sync;
-  BehaviourScores behaviour;
+  LifelikeMotion lifelike;  // against the fold's reference part
 };
 
 struct AblationResult {

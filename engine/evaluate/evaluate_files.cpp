@@ -105,7 +105,11 @@ EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options
     if (!w.empty()) result.warnings.push_back(w);
   }
   ReportFacts facts;
-  if (has_report) facts = report_facts_of(in.report, generated.fps, in.report_name);
+  PlayedPaths paths;
+  if (has_report) {
+    facts = report_facts_of(in.report, generated.fps, in.report_name);
+    paths = played_paths_of(in.report, in.report_name);
+  }
 
   EvaluateData data;
   data.generated = &generated;
@@ -119,7 +123,7 @@ EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options
   data.reference_name = in.reference_name;
   if (has_audio) data.audio = &in.audio;
   for (const audio::Audio& a : in.other_audio) data.other_audio.push_back(&a);
-  if (has_report) data.source_frames = &facts.source_frames;
+  if (has_report) data.paths = &paths;
   const nlohmann::ordered_json metrics = evaluate_motions(data, options);
 
   nlohmann::ordered_json inputs = {{"generated", in.generated_name}};

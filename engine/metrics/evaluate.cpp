@@ -5,7 +5,6 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
-#include "engine/metrics/behaviour.h"
 #include "engine/metrics/naturalness.h"
 #include "engine/metrics/sync.h"
 
@@ -53,6 +52,71 @@ void check_length(const Motion& m, const std::string& name) {
   if (m.frame_count < 4)
     throw Error(name + ": " + std::to_string(m.frame_count) + " frame" + (m.frame_count == 1 ? "" : "s") +
                 ", the metrics need at least 4 (jerk is a third difference)");
+}
+
+// A value, or null where a metric is undefined (NaN): JSON has no NaN, and null reads back alike.
+nlohmann::ordered_json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+// The lifelike metrics (lifelike.h against the reference's clips, else the truth; played_paths.h
+// from the report's paths).
+nlohmann::ordered_json lifelike_json(const EvaluateData& data, const Eigen::MatrixXd& gen, const LifelikeParams& params,
+                                     nlohmann::ordered_json& notes) {
+  const Motion& generated = *data.generated;
+  const double scale = length_unit_to_cm(generated.skeleton);
+  const LifelikeJoints joints = lifelike_joints(generated.skeleton);
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  std::vector<LifelikeFacts> reference;
+  for (const Motion* clip : data.reference)
+    reference.push_back(lifelike_facts(motion_forward_kinematics(*clip) * scale, clip->fps, joints, params));
+  if (reference.empty() && data.truth)
+    reference.push_back(
+        lifelike_facts(motion_forward_kinematics(*data.truth) * scale, data.truth->fps, joints, params));
+  if (!reference.empty()) {
+    const LifelikeMotion m = lifelike_motion(lifelike_facts(gen, generated.fps, joints, params),
+                                             lifelike_reference(reference, params), params);
+    j["against"] = data.reference.empty() ? "truth" : "reference";
+    if (joints.knees.empty()) {
+      notes.push_back("knee metrics skipped: no joint named *knee* or *leg (not *upleg) with a child");
+    } else {
+      j["knee_share_ratio"] = number_or_null(m.knee_share_ratio);
+      j["knee_p90_deg"] = number_or_null(m.knee_p90_deg);
+      j["reference_knee_p90_deg"] = number_or_null(m.reference_knee_p90_deg);
+    }
+    j["body_jerk_ratio"] = number_or_null(m.body_jerk_ratio);
+    j["body_jerk_p99_ratio"] = number_or_null(m.body_jerk_p99_ratio);
+    j["still_longest_ratio"] = number_or_null(m.still_longest_ratio);
+    j["still_longest_s"] = number_or_null(m.still_longest_s);
+    j["reference_still_longest_s"] = number_or_null(m.reference_still_longest_s);
+    if (joints.feet.empty()) {
+      notes.push_back("foot slide skipped: no joint named *ankle* or *foot* (not toe or end)");
+    } else {
+      j["foot_slide_ratio"] = number_or_null(m.foot_slide_ratio);
+      j["foot_slide_share"] = number_or_null(m.foot_slide_share);
+      j["reference_foot_slide_share"] = number_or_null(m.reference_foot_slide_share);
+    }
+  } else {
+    notes.push_back("lifelike motion metrics skipped: no --reference or --truth");
+  }
+  if (data.paths) {
+    const LifelikePaths p = lifelike_paths(*data.paths, generated.fps, generated.duration(), params);
+    j["junctions_per_min"] = p.junctions_per_min;
+    j["junction_gap_median_cm"] = number_or_null(p.junction_gap_median_cm);
+    j["stance_changes_per_min"] = p.stance_changes_per_min;
+    j["max_plays_upper"] = p.max_plays_upper;
+    j["max_plays_lower"] = p.max_plays_lower;
+    j["back_jumps_upper"] = p.back_jumps_upper;
+    j["back_jumps_lower"] = p.back_jumps_lower;
+    if (!data.reference.empty()) {
+      int frames = 0;
+      for (const Motion* clip : data.reference) frames += clip->frame_count;
+      j["coverage"] = reference_reuse(played_frames(data.paths->upper), frames).coverage;
+    }
+  } else {
+    notes.push_back("junctions, plays and back-jumps skipped: no --report");
+  }
+  return j;
 }
 
 }  // namespace
@@ -160,25 +224,15 @@ nlohmann::ordered_json evaluate_motions(const EvaluateData& data, const Evaluate
   } else {
     notes.push_back("naturalness skipped: no --truth or --reference");
   }
-  if (data.source_frames) {
-    const int transitions = source_transitions(*data.source_frames);
+  if (data.paths) {
+    const int transitions = source_transitions(played_frames(data.paths->upper));
     if (out.contains("naturalness")) {
       out["naturalness"]["transitions_per_s"] = transitions_per_second(transitions, generated.duration());
     } else {
       out["naturalness"] = {{"transitions_per_s", transitions_per_second(transitions, generated.duration())}};
     }
   }
-  const Stillness still = stillness(gen, fps, upper);
-  out["behaviour"] = {{"foot_slide", foot_slide_share(gen, fps, find_legs(generated.skeleton))},
-                      {"still_share", still.share},
-                      {"still_longest_s", still.longest_s}};
-  if (data.source_frames && !data.reference.empty()) {
-    int frames = 0;
-    for (const Motion* clip : data.reference) frames += clip->frame_count;
-    const Reuse reuse = reference_reuse(*data.source_frames, frames);
-    out["behaviour"]["max_plays"] = reuse.max_plays;
-    out["behaviour"]["coverage"] = reuse.coverage;
-  }
+  out["lifelike"] = lifelike_json(data, gen, options.lifelike, notes);
   out["notes"] = notes;
   return out;
 }

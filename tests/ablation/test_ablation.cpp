@@ -1,5 +1,6 @@
 // The ablation: time folds, seven setups, baselines that are what they claim.
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -131,7 +132,19 @@ TEST_F(AblationRun, BaselinesAreWhatTheyClaim) {
       const AblationScore& c = contiguous.scores[f * 2 + k];
       if (c.transitions_per_s == 0.0) {
         EXPECT_LE(c.jump_ratio, own + 1e-9) << "fold " << f;
+        // One stretch played once: no junction, no frame played twice, nothing to jump back to;
+        // the legs follow the same path.
+        EXPECT_EQ(c.paths.junctions, 0) << "fold " << f;
+        EXPECT_EQ(c.paths.max_plays_upper, 1) << "fold " << f;
+        EXPECT_EQ(c.paths.max_plays_lower, 1) << "fold " << f;
+        EXPECT_EQ(c.paths.back_jumps_upper, 0) << "fold " << f;
+        EXPECT_EQ(c.paths.stance_changes_per_min, 0.0) << "fold " << f;
+        EXPECT_TRUE(std::isnan(c.paths.junction_gap_median_cm)) << "fold " << f;
       }
+      // Random chunks join pieces that do not follow each other: junctions, each with a pose gap.
+      const AblationScore& r = chunks.scores[f * 2 + k];
+      EXPECT_GT(r.paths.junctions_per_min, 0.0) << "fold " << f;
+      EXPECT_GT(r.paths.junction_gap_median_cm, 0.0) << "fold " << f;
       EXPECT_GT(chunks.scores[f * 2 + k].transitions_per_s, c.transitions_per_s) << "fold " << f;
     }
   }
@@ -152,11 +165,21 @@ TEST_F(AblationRun, TablesHaveTheColumnsAndRows) {
                          0),
             0u)
       << header;
+  for (const char* name :
+       {"knee_share_ratio", "knee_p90_deg", "body_jerk_ratio", "body_jerk_p99_ratio", "still_longest_ratio",
+        "still_longest_s", "foot_slide_ratio", "foot_slide_share", "junctions_per_min", "junction_gap_median_cm",
+        "stance_changes_per_min", "max_plays_upper", "max_plays_lower", "back_jumps_upper", "back_jumps_lower"}) {
+    EXPECT_NE(header.find("," + std::string(name) + "," + name + "_sd"), std::string::npos) << name;
+  }
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8);  // header + 7 setups
   const std::string md = ablation_markdown(*result_);
   for (const char* name : {"| weak_detection |", "| no_fallback |", "| contiguous |", "| random_chunks |"})
     EXPECT_NE(md.find(name), std::string::npos) << name;
   EXPECT_NE(md.find("overflow bin"), std::string::npos);
+  // The lifelike table and the per-fold table's truth and full columns.
+  for (const char* head : {"| knee share × |", "| junctions/min |", "| back-jumps low |", "| truth knee share × |",
+                           "| full foot slide × |"})
+    EXPECT_NE(md.find(head), std::string::npos) << head;
 }
 
 TEST(Ablation, OneFoldIsAClearError) {

@@ -1,4 +1,5 @@
-// gmg evaluate over files: inputs, skipped metrics, naturalness, trimming, plots, mismatch errors.
+// gmg evaluate over files: inputs, skipped metrics, naturalness, lifelike metrics, trimming, plots,
+// mismatch errors.
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include "engine/evaluate/evaluate_files.h"
 #include "engine/motion/bvh.h"
 #include "engine/synth/synth.h"
+#include "tests/cli/cli_run.h"
 #include "tests/test_support.h"
 
 namespace gmg {
@@ -41,7 +43,8 @@ TEST_F(Evaluate, AgainstItselfSynIsZeroAndSkipsAreNoted) {
   const auto k = evaluate_files(alone, EvaluateOptions{}).json;
   EXPECT_FALSE(k.contains("syn"));
   EXPECT_FALSE(k.contains("bc"));
-  EXPECT_EQ(k["notes"].size(), 3u);  // no audio, no truth, no truth or reference for naturalness
+  // No audio, no truth, no truth or reference for naturalness nor the lifelike ratios, no report.
+  EXPECT_EQ(k["notes"].size(), 5u);
   EXPECT_GT(k["generated"]["jerk_cm_s3"].get<double>(), 0.0);
 }
 
@@ -82,6 +85,73 @@ TEST_F(Evaluate, NaturalnessAgainstTruthOrReference) {
   EXPECT_EQ(j["naturalness"]["steps_against"], "reference");
   EXPECT_GT(j["naturalness"]["jerk_ratio"].get<double>(), 0.0);
   EXPECT_NE(j["naturalness"]["jerk_ratio"].get<double>(), 1.0);
+}
+
+// The motion against itself as the truth: every lifelike ratio of a motion is 1; the path metrics
+// of a hand-written report: 0..149 played twice (frames 0-149 and 150-299 of 10 s).
+TEST_F(Evaluate, LifelikeAgainstItselfAndFromTheReport) {
+  gmg::testing::write_text(dir.file("r.json"), R"({"totals": {"failures": 0}, "subsequences": [
+    {"start_frame": 0, "target_length": 150, "continued": false, "junction_gap_cm": 0,
+     "transitions_inside": 0, "graph_ranges": [[0, 149]]},
+    {"start_frame": 150, "target_length": 150, "continued": false, "junction_gap_cm": 20.5,
+     "transitions_inside": 0, "graph_ranges": [[0, 149]]}]})");
+  EvaluateInputs in;
+  in.generated = dir.file("a.bvh");
+  in.truth = dir.file("a.bvh");
+  in.report = dir.file("r.json");
+  const auto j = evaluate_files(in, EvaluateOptions{}).json;
+  ASSERT_TRUE(j.contains("lifelike")) << j.dump();
+  const auto& l = j["lifelike"];
+  EXPECT_EQ(l["against"], "truth");
+  EXPECT_DOUBLE_EQ(l["body_jerk_ratio"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(l["body_jerk_p99_ratio"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(l["still_longest_ratio"].get<double>(), 1.0);
+  EXPECT_EQ(l["still_longest_s"], l["reference_still_longest_s"]);
+  EXPECT_EQ(l["knee_p90_deg"], l["reference_knee_p90_deg"]);
+  // One junction in 10 s: 6 a minute, its gap 20.5 cm; every frame played twice, and the second
+  // subsequence jumps back to frame 0, played 5 s before. No lower body: the legs follow.
+  EXPECT_DOUBLE_EQ(l["junctions_per_min"].get<double>(), 6.0);
+  EXPECT_DOUBLE_EQ(l["junction_gap_median_cm"].get<double>(), 20.5);
+  EXPECT_DOUBLE_EQ(l["stance_changes_per_min"].get<double>(), 6.0);
+  EXPECT_EQ(l["max_plays_upper"], 2);
+  EXPECT_EQ(l["max_plays_lower"], 2);
+  EXPECT_EQ(l["back_jumps_upper"], 1);
+  EXPECT_EQ(l["back_jumps_lower"], 1);
+  EXPECT_FALSE(l.contains("coverage"));  // no --reference
+  EXPECT_FALSE(j.contains("behaviour"));
+}
+
+// End to end: `gmg evaluate --json` of a reenactment against its graph prints every lifelike field.
+TEST_F(Evaluate, CommandLineJsonHasTheLifelikeFields) {
+  using gmg::testing::run_gmg;
+  ASSERT_EQ(run_gmg({"build", "--motion", dir.file("a.bvh"), "--audio", dir.file("a.wav"), "--transcript",
+                     dir.file("a.tsv"), "-o", dir.file("a.gmg")})
+                .code,
+            0);
+  ASSERT_EQ(run_gmg({"reenact", "--graph", dir.file("a.gmg"), "--audio", dir.file("b.wav"), "--transcript",
+                     dir.file("b.tsv"), "-o", dir.file("out.bvh"), "--report", dir.file("out.json"), "--seed", "1"})
+                .code,
+            0);
+  const gmg::testing::CliRun e = run_gmg({"evaluate", "--generated", dir.file("out.bvh"), "--report",
+                                          dir.file("out.json"), "--reference", dir.file("a.gmg"), "--json"});
+  ASSERT_EQ(e.code, 0) << e.err;
+  const nlohmann::json j = nlohmann::json::parse(e.out);
+  const nlohmann::json& l = j.at("lifelike");
+  EXPECT_EQ(l["against"], "reference");
+  for (const char* key :
+       {"knee_share_ratio", "knee_p90_deg", "reference_knee_p90_deg", "body_jerk_ratio", "body_jerk_p99_ratio",
+        "still_longest_ratio", "still_longest_s", "reference_still_longest_s", "foot_slide_ratio", "foot_slide_share",
+        "reference_foot_slide_share", "junctions_per_min", "junction_gap_median_cm", "stance_changes_per_min",
+        "max_plays_upper", "max_plays_lower", "back_jumps_upper", "back_jumps_lower", "coverage"}) {
+    ASSERT_TRUE(l.contains(key)) << key << " missing from " << l.dump();
+    // A ratio over a reference value of 0 is null; everything else is a number.
+    if (std::string(key) != "foot_slide_ratio") {
+      EXPECT_TRUE(l[key].is_number()) << key << ": " << l[key];
+    }
+  }
+  EXPECT_GE(l["max_plays_upper"].get<int>(), 1);
+  EXPECT_GT(l["junctions_per_min"].get<double>(), 0.0);
+  EXPECT_GT(l["coverage"].get<double>(), 0.0);
 }
 
 TEST_F(Evaluate, TrimCutsTheLongerClipAndSaysBy) {
