@@ -436,8 +436,8 @@ void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g) {
   st.known = known == 1;
   st.leg_length = r.pod<double>();
   st.still_speed = r.pod<float>();
-  if (st.known && !(std::isfinite(st.leg_length) && st.leg_length > 0.0 && std::isfinite(st.still_speed) &&
-                    st.still_speed >= 0.0f))
+  if (st.known &&
+      !(std::isfinite(st.leg_length) && st.leg_length > 0.0 && std::isfinite(st.still_speed) && st.still_speed >= 0.0f))
     r.fail("the stance's leg length or still speed is not a positive finite number");
   const std::size_t frames = st.known ? static_cast<std::size_t>(g.frame_count()) : 0;
   bool valid = true;

@@ -29,12 +29,12 @@
 
 #include "engine/core/files.h"
 #include "engine/motion/capture_facts.h"
-#include "engine/motion/stance.h"
-#include "engine/motion/up_axis.h"
 #include "engine/motion/capture_runs.h"
 #include "engine/motion/motion.h"
 #include "engine/motion/npz.h"
 #include "engine/motion/samples.h"
+#include "engine/motion/stance.h"
+#include "engine/motion/up_axis.h"
 #include "graph/keyword_label.h"
 #include "graph/params.h"
 

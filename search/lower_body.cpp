@@ -10,9 +10,10 @@
 namespace gmg {
 namespace {
 
-constexpr double kNearEqual = 0.05;  // targets within this cost of the best are drawn among
-constexpr double kWithheld = 1.0;    // what a target the seed withholds costs (half a typical stance gap)
-constexpr double kLongRunS = 5.0;
+constexpr double kNearEqual = 0.05;     // targets within this cost of the best are drawn among
+constexpr double kWithheld = 1.0;       // what a target the seed withholds costs (half a typical stance gap)
+constexpr double kLongRunS = 5.0;       // a stretch that can play this long needs no other change soon
+constexpr double kMinRunS = 2.0;        // the least a changed-into stretch must be able to play
 constexpr double kRunEndWindowS = 6.0;  // a change before a run's end is sought in its last seconds
 constexpr double kRestWindowS = 3.0;    // a change into a rest is sought in the seconds before it
 // A rest whose legs are not still costs kStillWeight per share of its frames that move; a change of
@@ -20,7 +21,7 @@ constexpr double kRestWindowS = 3.0;    // a change into a rest is sought in the
 // kChangeCost: a stance change the legs would not need is itself motion.
 constexpr double kStillWeight = 2.0;
 constexpr double kChangeCost = 0.5;
-constexpr std::size_t kFromCandidates = 8;  // stance frames weighed as the place of a change    // a stretch that can play this long needs no other change soon
+constexpr std::size_t kFromCandidates = 8;  // stance frames weighed as the place of a change
 
 class LowerPlanner {
  public:
@@ -36,7 +37,8 @@ class LowerPlanner {
     for (int f = frames - 1; f >= 0; --f) {
       const bool still = st_.speed[static_cast<std::size_t>(f)] < st_.still_speed;
       const bool next = f + 1 < frames && runs_.continues(f);
-      still_ahead_[static_cast<std::size_t>(f)] = still ? 1 + (next ? still_ahead_[static_cast<std::size_t>(f) + 1] : 0) : 0;
+      still_ahead_[static_cast<std::size_t>(f)] =
+          still ? 1 + (next ? still_ahead_[static_cast<std::size_t>(f) + 1] : 0) : 0;
     }
     for (const Anchor& a : rests)
       if (a.kind == Fixed::Rest) windows_.push_back({a.start + a.lead, a.start + a.length});
@@ -108,9 +110,7 @@ class LowerPlanner {
     return m > 0.0 ? m : 1.0;
   }
 
-  bool withheld(int f) const {
-    return !withheld_.empty() && withheld_[static_cast<std::size_t>(f / block_)];
-  }
+  bool withheld(int f) const { return !withheld_.empty() && withheld_[static_cast<std::size_t>(f / block_)]; }
 
   // The cost of changing into graph frame b: the stance gap (squared, over a typical gap: a change
   // between near-identical stances is what keeps the feet where they are), how far the hips stand
@@ -120,14 +120,19 @@ class LowerPlanner {
     if (std::abs(b - from) < 2 * fps_) return std::numeric_limits<double>::infinity();  // a stutter, not a change
     const int last = runs_.last(b);
     if (b + lead > last) return std::numeric_limits<double>::infinity();
+    // A stretch that cannot play kMinRunS (or what is left) forces another change at once, from a
+    // frame that need not be a stance: two short stretches then ping-pong between run ends.
+    if (last - b + 1 < std::min(left, static_cast<int>(std::lround(kMinRunS * fps_))))
+      return std::numeric_limits<double>::infinity();
     const double gap = std::sqrt(stance_distance(st_, from, b)) / typical_gap_;
     double c = 4.0 * gap * gap;
     const double dx = st_.place[2 * static_cast<std::size_t>(from)] - st_.place[2 * static_cast<std::size_t>(b)];
-    const double dz = st_.place[2 * static_cast<std::size_t>(from) + 1] - st_.place[2 * static_cast<std::size_t>(b) + 1];
+    const double dz =
+        st_.place[2 * static_cast<std::size_t>(from) + 1] - st_.place[2 * static_cast<std::size_t>(b) + 1];
     c += 0.5 * std::hypot(dx, dz);
     c += kStillWeight * deficit(b + lead, need);
     const int wanted = std::min(left, static_cast<int>(std::lround(kLongRunS * fps_)));
-    if (wanted > 0) c += 0.5 * std::max(0.0, 1.0 - static_cast<double>(last - b + 1) / wanted);
+    if (wanted > 0) c += 2.0 * std::max(0.0, 1.0 - static_cast<double>(last - b + 1) / wanted);
     int most = 0;
     const int span = std::min(last, b + std::max(lead + need, static_cast<int>(std::lround(2.0 * fps_))));
     for (int f = b; f <= span; ++f) most = std::max(most, static_cast<int>(plays_[static_cast<std::size_t>(f)]));
@@ -187,7 +192,7 @@ class LowerPlanner {
     std::vector<int> stances;
     for (int at = hi; at >= std::max(lo, t + 1); --at) {
       const int f = s + (at - t);
-      if (f < runs_.frame_count() && st_.planted[static_cast<std::size_t>(f)]) stances.push_back(at);
+      if (f < runs_.frame_count() && st_.planted[static_cast<std::size_t>(f)] && !in_rest(at)) stances.push_back(at);
     }
     std::vector<int> times;
     for (std::size_t k = 0; k < std::min(kFromCandidates, stances.size()); ++k)
@@ -207,9 +212,18 @@ class LowerPlanner {
     return best;
   }
 
+  // Whether output frame `at` lies inside a rest (from its still part's start to its end): a change
+  // there would move the legs the rest keeps still.
+  bool in_rest(int at) const {
+    for (const auto& [a, b] : windows_)
+      if (at >= a && at < b) return true;
+    return false;
+  }
+
   // The share of `need` frames from graph frame f that are not still (0 when need is 0).
   double deficit(int f, int need) const {
-    return need > 0 ? static_cast<double>(need - std::min(need, still_ahead_[static_cast<std::size_t>(f)])) / need : 0.0;
+    return need > 0 ? static_cast<double>(need - std::min(need, still_ahead_[static_cast<std::size_t>(f)])) / need
+                    : 0.0;
   }
 
   int start_frame() {

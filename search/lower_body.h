@@ -28,8 +28,8 @@
 namespace gmg {
 
 struct LowerBodyParams {
-  int reuse_cap_plays = 3;   // a stretch played this often is not played again (0: no cap)
-  double variety = 0.3;      // share of the reference's seconds a seed withholds as targets ([0, 0.9])
+  int reuse_cap_plays = 3;  // a stretch played this often is not played again (0: no cap)
+  double variety = 0.3;     // share of the reference's seconds a seed withholds as targets ([0, 0.9])
 };
 
 enum class LowerChange : std::uint8_t { Start, Rest, RunEnd };

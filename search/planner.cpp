@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -278,23 +279,39 @@ class Planner {
     if (continuing_from_ >= 0 && std::isfinite(rests_.stillness(continuing_from_, length)))
       candidates.push_back(continuing_from_);
     if (candidates.empty()) {  // a graph without activity: play on, or hold
-      seg.path = continuing_from_ >= 0 ? natural_run(g_, continuing_from_, length) : std::vector<int>{reference_ < 0 ? 0 : reference_};
+      seg.path = continuing_from_ >= 0 ? natural_run(g_, continuing_from_, length)
+                                       : std::vector<int>{reference_ < 0 ? 0 : reference_};
       return;
     }
-    std::vector<BeamCandidate> scored;
-    for (int f : candidates) {
+    auto score = [&](int f) {
       std::vector<int> path(static_cast<std::size_t>(length));
       std::iota(path.begin(), path.end(), f);
-      const double junction = reference_ < 0 || f == continuing_from_ ? 0.0 : params_.junction_beam * junction_.cost(reference_, f);
+      const double junction =
+          reference_ < 0 || f == continuing_from_ ? 0.0 : params_.junction_beam * junction_.cost(reference_, f);
       const double cost = junction + kRestStillness * params_.rest_weight * rests_.stillness(f + lead, still) +
                           params_.reuse_weight * reuse_.path_cost(path, seg.sub.start) +
                           (f == continuing_from_ ? 0.0 : preference_.of(f));
-      scored.push_back({std::move(path), cost});
-    }
-    std::stable_sort(scored.begin(), scored.end(),
-                     [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
+      return BeamCandidate{std::move(path), cost};
+    };
+    std::vector<BeamCandidate> scored;
+    for (int f : candidates) scored.push_back(score(f));
     std::vector<BeamCandidate> uncapped = scored;
     drop_capped(uncapped);
+    if (uncapped.empty()) {
+      // The stillest stretches are neighbours of a few rests; when those are played out, look
+      // further down the list, still in order of stillness, for rests not yet at their cap.
+      for (int f : rests_.stillest(still, std::numeric_limits<int>::max())) {
+        if (f - lead < 0 || !std::isfinite(rests_.stillness(f - lead, length))) continue;
+        std::vector<BeamCandidate> one{score(f - lead)};
+        drop_capped(one);
+        if (!one.empty()) uncapped.push_back(std::move(one.front()));
+        if (uncapped.size() >= kRestCandidates / 4) break;
+      }
+    }
+    std::stable_sort(uncapped.begin(), uncapped.end(),
+                     [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
+    std::stable_sort(scored.begin(), scored.end(),
+                     [](const BeamCandidate& a, const BeamCandidate& b) { return a.cost < b.cost; });
     if (!uncapped.empty()) scored.swap(uncapped);  // else the least replayed of the few rests there are
     constexpr double kNearEqual = 0.05;
     std::size_t near = 1;

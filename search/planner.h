@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "graph/motion_graph.h"
+#include "search/anchors.h"
 #include "search/beam_search.h"
 #include "search/fallbacks.h"
-#include "search/anchors.h"
 #include "search/params.h"
 #include "search/segmentation.h"
 

@@ -15,7 +15,8 @@ RestFinder::RestFinder(const MotionGraph& g) {
   prefix_.assign(static_cast<std::size_t>(n) + 1, 0.0);
   std::vector<float> sorted(static_cast<std::size_t>(n));
   for (int f = 0; f < n; ++f) {
-    prefix_[static_cast<std::size_t>(f) + 1] = prefix_[static_cast<std::size_t>(f)] + g.activity[static_cast<std::size_t>(f)];
+    prefix_[static_cast<std::size_t>(f) + 1] =
+        prefix_[static_cast<std::size_t>(f)] + g.activity[static_cast<std::size_t>(f)];
     sorted[static_cast<std::size_t>(f)] = g.activity[static_cast<std::size_t>(f)];
   }
   const auto q = sorted.begin() + static_cast<std::ptrdiff_t>(kStillQuantile * (n - 1));

@@ -41,7 +41,8 @@ std::vector<double> facing_turn(const Motion& upper, const Motion& lower, int hi
   const double sigma = kHeadingSigmaS * upper.fps;
   const int half = static_cast<int>(std::ceil(3.0 * sigma));
   std::vector<double> kernel(static_cast<std::size_t>(2 * half + 1));
-  for (int k = -half; k <= half; ++k) kernel[static_cast<std::size_t>(k + half)] = std::exp(-0.5 * k * k / (sigma * sigma));
+  for (int k = -half; k <= half; ++k)
+    kernel[static_cast<std::size_t>(k + half)] = std::exp(-0.5 * k * k / (sigma * sigma));
   std::vector<double> out(raw.size());
   for (int f = 0; f < n; ++f) {
     double sum = 0.0, weight = 0.0;

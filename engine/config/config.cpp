@@ -242,8 +242,8 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
                "layered body: the lower body plays its own calm path, changing stance only with both feet planted "
                "(false: one path for the whole body, feet held by the foot lock)",
                &Config::search, &SearchParams::layers),
-      number_key("rest_min_s", "new-speech pauses at least this long rest (natural planner), seconds",
-                 &Config::search, &SearchParams::rest_min_s),
+      number_key("rest_min_s", "new-speech pauses at least this long rest (natural planner), seconds", &Config::search,
+                 &SearchParams::rest_min_s),
       number_key("rest_lead_s",
                  "a rest starts this long before its pause: the way into it, and any change of stance, seconds",
                  &Config::search, &SearchParams::rest_lead_s),

@@ -7,7 +7,7 @@
 //
 // Every whole-number key has a range, shown in its help (`gmg config --keys`) and enforced when
 // it is set: l_cn 1-300, l_pn 1-10000, l_npaths 1-1000, l_feat 1-1000, retries 0-100,
-// ignore_rounds 1-100, l_blend 0-1000, smooth_window 3-255, smooth_order 0-15, seed any 64-bit
+// ignore_rounds 1-100, l_blend 0-1000, beat_shift 0-30, smooth_window 3-255, smooth_order 0-15, seed any 64-bit
 // unsigned value; and max_length_factor lies in 1.1-100. Values beyond these only cost time or
 // memory (a beam of 10^9 paths) and never help.
 #pragma once

@@ -11,7 +11,8 @@ namespace {
 
 std::vector<std::vector<int>> children_of(const Skeleton& s) {
   std::vector<std::vector<int>> out(static_cast<std::size_t>(s.joint_count()));
-  for (int j = 1; j < s.joint_count(); ++j) out[static_cast<std::size_t>(s.joints[static_cast<std::size_t>(j)].parent)].push_back(j);
+  for (int j = 1; j < s.joint_count(); ++j)
+    out[static_cast<std::size_t>(s.joints[static_cast<std::size_t>(j)].parent)].push_back(j);
   return out;
 }
 
@@ -105,7 +106,8 @@ BodyLayers find_body_layers(const Motion& m) {
   for (int j = 1; j < s.joint_count(); ++j)
     if (children[static_cast<std::size_t>(j)].empty()) ends.push_back(j);
   std::sort(ends.begin(), ends.end(), [&](int a, int b) {
-    return pos[static_cast<std::size_t>(a)].y < pos[static_cast<std::size_t>(b)].y || (pos[static_cast<std::size_t>(a)].y == pos[static_cast<std::size_t>(b)].y && a < b);
+    return pos[static_cast<std::size_t>(a)].y < pos[static_cast<std::size_t>(b)].y ||
+           (pos[static_cast<std::size_t>(a)].y == pos[static_cast<std::size_t>(b)].y && a < b);
   });
   if (ends.size() < 2 || pos[static_cast<std::size_t>(ends[0])].y > lo + 0.1 * height) return out;
   const int first = ends[0];
@@ -151,23 +153,32 @@ BodyLayers body_layers_from_names(const Motion& m, const std::vector<std::string
   std::vector<char> lower(static_cast<std::size_t>(s.joint_count()), 0);
   for (const std::string& n : names) {
     const int j = s.find(n);
-    if (j < 0) throw Error("lower_joints names '" + n + "', which is not a joint of the skeleton" + did_you_mean(n, all));
+    if (j < 0)
+      throw Error("lower_joints names '" + n + "', which is not a joint of the skeleton" + did_you_mean(n, all));
     lower[static_cast<std::size_t>(j)] = 1;
   }
   if (!lower[0]) throw Error("lower_joints must include the root joint '" + s.joints[0].name + "'");
   out.lower = std::move(lower);
-  // The spine: from the deepest lower joint's upper child upwards.
+  // The spine: from the lower joint whose upper child carries the most joints (the chest, arms
+  // and head hang from it), upwards. Not the deepest such joint: a toe left out of the names is an
+  // upper child of its foot.
   const std::vector<std::vector<int>> children = children_of(s);
+  std::vector<int> subtree(static_cast<std::size_t>(s.joint_count()), 1);
+  for (int j = s.joint_count() - 1; j > 0; --j)
+    subtree[static_cast<std::size_t>(s.joints[static_cast<std::size_t>(j)].parent)] += subtree[static_cast<std::size_t>(j)];
   out.spine.clear();
-  for (int j = s.joint_count() - 1; j >= 0 && out.spine.empty(); --j) {
+  out.hip_branch = -1;
+  int best = 0, best_child = -1;
+  for (int j = 0; j < s.joint_count(); ++j) {
     if (!out.lower[static_cast<std::size_t>(j)]) continue;
     for (int c : children[static_cast<std::size_t>(j)])
-      if (!out.lower[static_cast<std::size_t>(c)]) {
+      if (!out.lower[static_cast<std::size_t>(c)] && subtree[static_cast<std::size_t>(c)] > best) {
+        best = subtree[static_cast<std::size_t>(c)];
         out.hip_branch = j;
-        out.spine = spine_from(children, c);
-        break;
+        best_child = c;
       }
   }
+  if (best_child >= 0) out.spine = spine_from(children, best_child);
   const std::vector<glm::dvec3> pos = first_frame_positions(m);
   out.feet.clear();
   for (std::vector<int>& leg : out.legs) {
@@ -186,7 +197,8 @@ std::string describe_body_layers(const Skeleton& s, const BodyLayers& layers) {
   if (!layers.layered()) return "one layer (no two legs found)";
   std::string lower, spine;
   for (int j = 0; j < s.joint_count(); ++j)
-    if (layers.lower[static_cast<std::size_t>(j)]) lower += (lower.empty() ? "" : " ") + s.joints[static_cast<std::size_t>(j)].name;
+    if (layers.lower[static_cast<std::size_t>(j)])
+      lower += (lower.empty() ? "" : " ") + s.joints[static_cast<std::size_t>(j)].name;
   for (int j : layers.spine) spine += (spine.empty() ? "" : " ") + s.joints[static_cast<std::size_t>(j)].name;
   return "lower: " + lower + "; spine: " + spine;
 }

@@ -70,7 +70,8 @@ void foot_contacts(const std::vector<glm::dvec3>& p, const CaptureRuns& runs, do
       const int g = f > first ? f - 1 : std::min(f + 1, last);
       const double speed = glm::length(p[static_cast<std::size_t>(f)] - p[static_cast<std::size_t>(g)]) * fps;
       out_low[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f)].y <= lowest + kContactHeight * leg_length;
-      out_contact[static_cast<std::size_t>(f)] = speed < kContactSpeed * leg_length && out_low[static_cast<std::size_t>(f)];
+      out_contact[static_cast<std::size_t>(f)] =
+          speed < kContactSpeed * leg_length && out_low[static_cast<std::size_t>(f)];
     }
     first = last + 1;
   }

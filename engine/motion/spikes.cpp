@@ -36,7 +36,8 @@ void each_jerk(const Motion& m, const CaptureRuns& runs, const std::vector<int>&
     const auto& a = window[static_cast<std::size_t>((f - 3) % 4)];
     const auto& b = window[static_cast<std::size_t>((f - 2) % 4)];
     const auto& c = window[static_cast<std::size_t>((f - 1) % 4)];
-    for (std::size_t i = 0; i < joints.size(); ++i) visit(f - 1, i, glm::length(now[i] - 3.0 * c[i] + 3.0 * b[i] - a[i]));
+    for (std::size_t i = 0; i < joints.size(); ++i)
+      visit(f - 1, i, glm::length(now[i] - 3.0 * c[i] + 3.0 * b[i] - a[i]));
   }
   motion_release_pages(m);
 }

@@ -64,7 +64,8 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
     for (int l = 0; l < 2; ++l) {
       foot_pos[l][f] = pos[static_cast<std::size_t>(feet[l])];
       const glm::dvec3 local = inv_heading * (foot_pos[l][f] - hp) * unit;
-      for (int d = 0; d < 3; ++d) pose[f * kStanceDims + static_cast<std::size_t>(3 * l + d)] = static_cast<float>(local[d]);
+      for (int d = 0; d < 3; ++d)
+        pose[f * kStanceDims + static_cast<std::size_t>(3 * l + d)] = static_cast<float>(local[d]);
     }
     const glm::dvec3 tilt = inv_heading * hr * glm::dvec3(0.0, 1.0, 0.0);
     pose[f * kStanceDims + 7] = static_cast<float>(tilt.x);
@@ -80,7 +81,8 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
     for (int f = first; f <= last; ++f)
       floor = std::min({floor, foot_pos[0][static_cast<std::size_t>(f)].y, foot_pos[1][static_cast<std::size_t>(f)].y});
     for (int f = first; f <= last; ++f)
-      pose[static_cast<std::size_t>(f) * kStanceDims + 6] = static_cast<float>((hip_pos[static_cast<std::size_t>(f)].y - floor) * unit);
+      pose[static_cast<std::size_t>(f) * kStanceDims + 6] =
+          static_cast<float>((hip_pos[static_cast<std::size_t>(f)].y - floor) * unit);
     first = last + 1;
   }
   std::vector<char> contact[2], low;
@@ -93,8 +95,9 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
   }
   for (std::size_t f = 0; f < frames; ++f) {
     // Differences inside the capture run: backward, forward at its first frame.
-    const std::size_t g = f > 0 && runs.continues(static_cast<int>(f) - 1) ? f - 1
-                          : (f + 1 < frames && runs.continues(static_cast<int>(f)) ? f + 1 : f);
+    const std::size_t g = f > 0 && runs.continues(static_cast<int>(f) - 1)
+                              ? f - 1
+                              : (f + 1 < frames && runs.continues(static_cast<int>(f)) ? f + 1 : f);
     double fastest = 0.0;
     for (std::size_t k = 0; k < leg_joints.size(); ++k) fastest = std::max(fastest, glm::length(rel[f][k] - rel[g][k]));
     speed[f] = static_cast<float>(fastest * m.fps * unit);

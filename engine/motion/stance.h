@@ -26,13 +26,13 @@ constexpr double kStanceHipSpeed = 0.08;
 constexpr int kStanceDims = 9;
 
 struct Stance {
-  bool known = false;      // false: the skeleton has no two legs (nothing is layered)
-  double leg_length = 0.0; // hip branch to foot end in the first frame, file units
+  bool known = false;       // false: the skeleton has no two legs (nothing is layered)
+  double leg_length = 0.0;  // hip branch to foot end in the first frame, file units
   // Owned, or read in place from a graph file (engine/motion/samples.h).
-  Samples<float> pose;                // frames x kStanceDims
-  Samples<float> place;               // frames x 2: the hips' horizontal position (x, z), leg lengths
-  Samples<float> speed;               // per frame: the largest speed of a leg joint relative to the hips, leg lengths/s
-  Samples<std::uint8_t> planted;      // per frame: 1 for a stance frame
+  Samples<float> pose;            // frames x kStanceDims
+  Samples<float> place;           // frames x 2: the hips' horizontal position (x, z), leg lengths
+  Samples<float> speed;           // per frame: the largest speed of a leg joint relative to the hips, leg lengths/s
+  Samples<std::uint8_t> planted;  // per frame: 1 for a stance frame
   // The lower body is still at a frame when `speed` is below this, the reference's 35th percentile:
   // where the whole body is still (its largest joint speed below its own 5th percentile: BEAT2 17
   // cm/s, ZEGGS 8 cm/s) the legs move at their 35th-40th percentile.
@@ -46,8 +46,9 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
 inline double stance_distance(const Stance& s, int a, int b) {
   double sum = 0.0;
   for (int d = 0; d < kStanceDims; ++d) {
-    const double x = static_cast<double>(s.pose[static_cast<std::size_t>(a) * kStanceDims + static_cast<std::size_t>(d)]) -
-                     static_cast<double>(s.pose[static_cast<std::size_t>(b) * kStanceDims + static_cast<std::size_t>(d)]);
+    const double x =
+        static_cast<double>(s.pose[static_cast<std::size_t>(a) * kStanceDims + static_cast<std::size_t>(d)]) -
+        static_cast<double>(s.pose[static_cast<std::size_t>(b) * kStanceDims + static_cast<std::size_t>(d)]);
     sum += x * x;
   }
   return sum;

@@ -22,7 +22,8 @@ inline constexpr EnumName<UpAxis> kUpAxisNames[] = {{UpAxis::Y, "y"}, {UpAxis::Z
 
 // What `--up` asks for: detect it, or a given axis.
 enum class UpChoice : std::uint8_t { Auto, Y, Z };
-inline constexpr EnumName<UpChoice> kUpChoiceNames[] = {{UpChoice::Auto, "auto"}, {UpChoice::Y, "y"}, {UpChoice::Z, "z"}};
+inline constexpr EnumName<UpChoice> kUpChoiceNames[] = {
+    {UpChoice::Auto, "auto"}, {UpChoice::Y, "y"}, {UpChoice::Z, "z"}};
 
 // The axis along which the body is tallest: of Y and Z, the one with the larger median extent of
 // the joints' world positions over up to 64 frames spread over the motion (a standing speaker is

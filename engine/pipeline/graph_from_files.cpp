@@ -13,8 +13,8 @@
 #include "engine/core/files.h"
 #include "engine/core/parallel.h"
 #include "engine/motion/cleanup.h"
-#include "engine/motion/up_axis.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/up_axis.h"
 
 namespace gmg {
 

@@ -63,7 +63,7 @@ Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody&
   }
   const CaptureRuns runs = graph_runs(g);
   const Motion legs = assemble_inertialized(g.motion, runs, g.capture.known ? g.capture : capture_facts(g.motion, runs),
-                                           pieces, p, lower.layers.feet);
+                                            pieces, p, lower.layers.feet);
   return join_layers(upper, legs, lower.layers, params.spine_follow);
 }
 
@@ -78,7 +78,8 @@ nlohmann::ordered_json lower_body_report(const Skeleton& skeleton, const LowerBo
     item["length"] = s.length;
     item["change"] = enum_name(kLowerChangeNames, s.change);
     item["stance_gap"] = s.gap;
-    item["graph_ranges"] = nlohmann::ordered_json::array({nlohmann::ordered_json::array({s.source, s.source + s.length - 1})});
+    item["graph_ranges"] =
+        nlohmann::ordered_json::array({nlohmann::ordered_json::array({s.source, s.source + s.length - 1})});
     list.push_back(std::move(item));
   }
   j["stretches"] = std::move(list);

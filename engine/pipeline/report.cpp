@@ -37,7 +37,8 @@ nlohmann::ordered_json reenactment_report(const Plan& plan, const SpeechEvents& 
     nlohmann::ordered_json item;
     item["start_frame"] = s.sub.start;
     item["target_length"] = s.sub.length;
-    item["termination"] = s.sub.kind == Termination::Keyword ? "keyword" : (s.sub.kind == Termination::Frame ? "frame" : "rhythm");
+    item["termination"] =
+        s.sub.kind == Termination::Keyword ? "keyword" : (s.sub.kind == Termination::Frame ? "frame" : "rhythm");
     if (s.sub.kind == Termination::Keyword) item["keyword"] = s.sub.keyword;
     if (s.sub.kind == Termination::Frame) item["stop_frame"] = s.sub.stop_frame;
     if (s.sub.fixed != Fixed::None) item["fixed"] = s.sub.fixed == Fixed::Rest ? "rest" : "pin";

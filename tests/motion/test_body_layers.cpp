@@ -291,12 +291,10 @@ TEST(BodyLayers, NamesWithoutToesEndTheLegsAtTheFeet) {
   EXPECT_EQ(l.lower[static_cast<std::size_t>(s.find("LeftToeBase"))], 0);
 }
 
-// BUG (engine/motion/body_layers.cpp body_layers_from_names): the spine is taken from "the deepest
-// lower joint with an upper child", the lower joint of highest index, not the joint where the legs
-// part. With the toes left out of the names, RightFoot (index 20) has an upper child (RightToeBase),
-// so hip_branch becomes RightFoot and the spine {RightToeBase}: join_layers then turns the right toe
-// by the pelvis difference and leaves the real spine alone. Expected: the spine above the hips.
-TEST(BodyLayers, DISABLED_NamesWithoutToesKeepTheSpineAboveTheHips) {
+// With the toes left out of the names, each foot has an upper child (its toe); the spine must
+// still be the chain above the hips, where the chest, arms and head hang, not a toe: join_layers
+// would otherwise turn the toe by the pelvis difference and leave the real spine alone.
+TEST(BodyLayers, NamesWithoutToesKeepTheSpineAboveTheHips) {
   const Skeleton s = synth_skeleton();
   const BodyLayers l = body_layers_from_names(
       standing(s, {0, 95, 0}), {"Hips", "LeftUpLeg", "LeftLeg", "LeftFoot", "RightUpLeg", "RightLeg", "RightFoot"});

@@ -123,16 +123,13 @@ TEST(LowerBody, ChangesGoToTheNearestStance) {
   }
 }
 
-// BUG (search/lower_body.cpp LowerPlanner::cost): 900 output frames from the two runs of 200 frames
-// of the nearest stance (wide_last_run). Once their stretches have been played a couple of times,
-// the reuse term (0.25 plays^2: 1 for two plays) outweighs the short-run term (at most 0.5), so a
-// run-end change goes to the rarely played last frames of a run: source 390 or 190, 9 frames before
-// the run ends. The next change is then forced 9 frames later from the run's last frame (199 or
-// 399, no stance frame: the fallback), and the plan ping-pongs between the two run ends in 9-frame
-// segments (seed 2: output 770-806; seeds 3, 4 and 5 too). Expected, as the header says: a run-end
-// change goes to a stance with a long run ahead; no segment but the last shorter than a second,
-// every change made at a stance frame.
-TEST(LowerBody, DISABLED_RunEndChangesGoToLongRuns) {
+// 900 output frames from the two runs of 200 frames of the nearest stance (wide_last_run). Once
+// their stretches have been played a couple of times, reuse makes the rarely played last frames of
+// a run attractive; a change there (9 frames before the run ends) forces the next one from the
+// run's last frame, no stance frame, and the plan ping-pongs between the two run ends in 9-frame
+// segments. A run-end change goes to a stance with a long run ahead: no segment but the last
+// shorter than a second, every change made at a stance frame.
+TEST(LowerBody, RunEndChangesGoToLongRuns) {
   const Stance st = wide_last_run();
   const CaptureRuns runs(600, {199, 399, 599});
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
@@ -171,14 +168,11 @@ TEST(LowerBody, RestsGetStillStances) {
   expect_still(st, CaptureRuns(1200, {299, 1199}), {{440, 70, Fixed::Rest, -1, 10}}, 450, 510);
 }
 
-// BUG (search/lower_body.cpp LowerPlanner::run): the change at a capture run's end is sought in the
-// run's last kRunEndWindowS seconds whatever lies there, so it can fall inside a rest the plan has
-// just changed into a still stance for. Here (two runs of 300 frames, still legs at [400, 500), a
-// rest at [450, 510)) seed 4 changes into source 410 at output 450 for the rest; that run ends 190
-// frames later, so the run-end window is output [460, 638], and the change is made at 480, to moving
-// legs: 30 of the rest's 60 frames move (seeds 9 and 12: 40 and 10). Expected: the run-end change
-// after the rest (the window holds stance frames there).
-TEST(LowerBody, DISABLED_ARunEndChangeDoesNotBreakARest) {
+// A change at a capture run's end sought in the run's last seconds must not fall inside a rest the
+// plan has just changed into a still stance for. Two runs of 300 frames, still legs at [400, 500),
+// a rest at [450, 510): the change into source 410 at output 450 plays a run that ends 190 frames
+// later, whose end window [460, 638] holds the rest's frames.
+TEST(LowerBody, ARunEndChangeDoesNotBreakARest) {
   const Stance st = made_stance(600, 400, 500);
   expect_still(st, CaptureRuns(600, {299, 599}), {{440, 70, Fixed::Rest, -1, 10}}, 450, 510);
 }
