@@ -18,6 +18,7 @@
 #include "engine/motion/bvh.h"
 #include "engine/motion/motion_file.h"
 #include "engine/motion/npy.h"
+#include "engine/motion/zip.h"
 #include "engine/motion/npz.h"
 #include "tests/core/helpers.h"
 #include "tests/motion/motion_test_util.h"

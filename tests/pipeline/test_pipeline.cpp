@@ -19,6 +19,7 @@
 #include "engine/motion/bvh.h"
 #include "engine/motion/motion_file.h"
 #include "engine/motion/npy.h"
+#include "engine/motion/zip.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/synth/synth.h"
 #include "graph/graph_io.h"
