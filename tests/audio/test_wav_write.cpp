@@ -94,5 +94,4 @@ TEST(Wav, ReadWithTargetRateResamples) {
   EXPECT_EQ(error_of([&] { gmg::audio::read_wav(path, 0); }), path + ": target sample rate 0 is not positive");
 }
 
-
 }  // namespace

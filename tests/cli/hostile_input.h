@@ -41,7 +41,6 @@
 #include "graph/graph_io.h"
 #include "tests/test_support.h"
 
-
 #if defined(__SANITIZE_ADDRESS__)
 #define GMG_TEST_SANITIZED 1
 #elif defined(__has_feature)
@@ -72,7 +71,7 @@ struct ChildRun {
 // Runs `gmg args...` in `cwd`. With interrupt_after_ms >= 0 it sends `signal` after that long,
 // and, when `signal_once` is given, not before that file exists (the child has reached a step).
 inline ChildRun run_gmg(const std::vector<std::string>& args, const fs::path& cwd, double timeout_s = 60,
-                 int interrupt_after_ms = -1, int signal = SIGINT, const fs::path& signal_once = {}) {
+                        int interrupt_after_ms = -1, int signal = SIGINT, const fs::path& signal_once = {}) {
   TempDir io;
   const std::string out_path = io.file("out"), err_path = io.file("err");
   write_text(out_path, "");  // here, not in the child: an early interrupt may stop it before its opens
