@@ -168,7 +168,7 @@ namespace {
 // The spectrogram is computed kFrames frames at a time, one frame per lane of two vectors
 // (audio/lanes.h): sixteen frames with AVX-512, eight with AVX, four with SSE2. Two vectors give
 // each band's sum, and the logarithm's series, two independent chains where one would wait on its
-// own latency (with AVX-512 too: one vector of eight frames took 0.3 ms more per minute of audio).
+// own latency (with AVX-512 too: docs/performance.md, "The onset analysis and the WAV reader").
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
@@ -177,12 +177,11 @@ constexpr int kLanes = lanes::kWidth;
 constexpr int kVectors = 2;
 constexpr int kFrames = kVectors * kLanes;
 
-// power_to_db (onset_strength.h) lane by lane. glibc's log10 is a scalar call and was a fifth of the
+// power_to_db (onset_strength.h) lane by lane. glibc's log10 is a scalar call, much of the
 // analysis; this is its argument reduction and a series, vectorised: x = 2^e m with m in
 // [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) with s = (m - 1) / (m + 1), |s| < 0.172, whose odd series
-// to s^19 is within double rounding (the next term is below 3e-17 of the sum). Measured against 10 * std::log10 on 8
-// million values log-uniform over [1e-10, 1e10]: at most 1.4e-14 dB (2.6 units in the last place) apart; the envelopes
-// of the shared recordings came out bit for bit as with std::log10.
+// to s^19 is within double rounding (the next term is below 3e-17 of the sum). How close it is to
+// std::log10: Onsets.PowerToDbIsTheLibraryLog and docs/performance.md.
 Lanes power_to_db_lanes(const Lanes& power) {
   const Lanes x = select(power > 1e-10, power, Lanes{} + 1e-10);  // as std::max(1e-10, power)
   LaneBits bits;
@@ -238,10 +237,9 @@ void windowed_frame(const float* y, long long a, long long n, long long t, float
 // complex numbers), split in double: with Z the transform and Z[1024] = Z[0],
 //   X[k] = (Z[k] + conj Z[1024 - k]) / 2 - i e^(-i pi k / 1024) (Z[k] - conj Z[1024 - k]) / 2.
 // FFTW's own real-input transform does the same split in single precision and its complex
-// codelets are faster than its real-input ones here: measured, the analysis is 0.5 ms faster per
-// minute of audio, and the envelopes of the shared recordings move by at most 9.5e-7 (under one
-// float step at their peaks; against librosa their max |diff| stays 6.7e-6 .. 8.6e-6), with the
-// same onsets.
+// codelets are faster than its real-input ones here; the envelopes move by less than a float step
+// at their peaks, with the same onsets (docs/performance.md, "The onset analysis and the WAV
+// reader").
 struct RealFft {
   static constexpr int kHalf = kNfft / 2;  // 1024
 

@@ -28,10 +28,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 // Writes to a stream in whole blocks of `block` bytes, each at a multiple of `block` from where
 // writing began (flush() writes the shorter rest). Linux (6.18 with ext4 here) gives the page cache
 // of a write folios as large as the write's length and alignment allow, and a file later read
-// through a mapping is read as fast as its folios are large: a graph file written in 4 MB pieces
-// at unaligned offsets was served at about half the speed of the same bytes written in aligned
-// blocks (graph/graph_io.cpp). Buffers at most one block; whole blocks at a block boundary go out
-// without a copy.
+// through a mapping is read as fast as its folios are large (a graph file: graph/graph_archive.h,
+// measured in docs/performance.md). Buffers at most one block; whole blocks at a block boundary go
+// out without a copy.
 class BlockWriter {
  public:
   BlockWriter(std::ostream& out, std::size_t block) : out_(out), block_(block) {}
