@@ -168,7 +168,7 @@ namespace {
 // The spectrogram is computed kFrames frames at a time, one frame per lane of two vectors
 // (audio/lanes.h): sixteen frames with AVX-512, eight with AVX, four with SSE2. Two vectors give
 // each band's sum, and the logarithm's series, two independent chains where one would wait on its
-// own latency (with AVX-512 too: docs/performance.md, "The onset analysis and the WAV reader").
+// own latency (with AVX-512 too: docs/decisions.md, "Implementation choices").
 using lanes::LaneBits;
 using lanes::Lanes;
 using lanes::LanesF;
@@ -181,7 +181,7 @@ constexpr int kFrames = kVectors * kLanes;
 // analysis; this is its argument reduction and a series, vectorised: x = 2^e m with m in
 // [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) with s = (m - 1) / (m + 1), |s| < 0.172, whose odd series
 // to s^19 is within double rounding (the next term is below 3e-17 of the sum). How close it is to
-// std::log10: Onsets.PowerToDbIsTheLibraryLog and docs/performance.md.
+// std::log10: Onsets.PowerToDbIsTheLibraryLog and docs/decisions.md, "Implementation choices".
 Lanes power_to_db_lanes(const Lanes& power) {
   const Lanes x = select(power > 1e-10, power, Lanes{} + 1e-10);  // as std::max(1e-10, power)
   LaneBits bits;
@@ -238,8 +238,7 @@ void windowed_frame(const float* y, long long a, long long n, long long t, float
 //   X[k] = (Z[k] + conj Z[1024 - k]) / 2 - i e^(-i pi k / 1024) (Z[k] - conj Z[1024 - k]) / 2.
 // FFTW's own real-input transform does the same split in single precision and its complex
 // codelets are faster than its real-input ones here; the envelopes move by less than a float step
-// at their peaks, with the same onsets (docs/performance.md, "The onset analysis and the WAV
-// reader").
+// at their peaks, with the same onsets (docs/decisions.md, "Implementation choices").
 struct RealFft {
   static constexpr int kHalf = kNfft / 2;  // 1024
 

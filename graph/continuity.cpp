@@ -37,7 +37,7 @@ namespace {
 // The memory the parallel search may give the survivors it keeps for pruning 2 (kept_survivors).
 // Above exact_frames a frame searched again costs the walk of its whole leaf (graph/params.h
 // kLeafWalkChecks), alone on one thread: with half this budget a 19 h build spent most of its wall
-// time on one core in those searches (docs/performance.md).
+// time on one core in those searches (docs/decisions.md, "Implementation choices").
 constexpr std::size_t kKeptSurvivorBytes = std::size_t{512} << 20;
 // At least this many a frame however long the reference (the bound is nearly always settled among
 // the first few), at most what a frame's count (one byte) holds.

@@ -31,8 +31,8 @@ constexpr std::size_t kGraphHeaderBytes = sizeof kGraphMagic + sizeof(std::uint3
 
 // A graph file is written in whole blocks of this many bytes from its start (BlockWriter,
 // engine/core/file_write.h): a file served from its mapping is read as fast as the page cache's
-// folios are large, and written in smaller pieces it was served much slower (docs/performance.md,
-// "Length of the reference: reenactment").
+// folios are large, and written in smaller pieces it was served much slower
+// (docs/decisions.md, "Implementation choices").
 constexpr std::size_t kGraphWriteBlock = std::size_t{16} << 20;
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -291,7 +291,7 @@ class ArchiveReader {
 
 // How many of p[0 .. n) are finite. x - x is 0 for a finite x and NaN for an infinite or NaN one,
 // and a count without an early exit vectorises, where std::isfinite and a short-circuit ran at a
-// value per cycle over a load's largest arrays (docs/performance.md).
+// value per cycle over a load's largest arrays (docs/decisions.md, "Implementation choices").
 template <typename T>
 std::size_t count_finite(const T* p, std::size_t n) {
   std::size_t good = 0;

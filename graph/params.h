@@ -77,7 +77,7 @@ inline constexpr int kLeafWalkChecks = 6;
 // reference), when that copy needs at most this many bytes. The copy is twice the positions (the
 // velocities precomputed), so above the budget the frame-order rows are read instead: the graph is
 // the same either way, bit for bit. 1 GiB holds 25 joints to 15 h and 55 joints to 7 h at 30 fps;
-// what the copy saves: docs/performance.md, "Rows in the tree's leaf order".
+// what the copy saves: docs/performance.md.
 inline constexpr long long kLeafOrderRowsBytes = 1LL << 30;
 
 // Throws gmg::Error naming the first key out of range.

@@ -2,7 +2,7 @@
 // library (libxxhash-dev, used header-only so the build's vector width applies). XXH3's value
 // does not depend on the vector code that computes it or on how the bytes are split into add()
 // calls, and it runs at several times the speed of a byte-serial hash, so a load's checksum pass is
-// bound by memory (docs/performance.md).
+// bound by memory (docs/decisions.md, "Implementation choices").
 #pragma once
 
 #include <cstddef>

@@ -29,8 +29,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 // writing began (flush() writes the shorter rest). Linux (6.18 with ext4 here) gives the page cache
 // of a write folios as large as the write's length and alignment allow, and a file later read
 // through a mapping is read as fast as its folios are large (a graph file: graph/graph_archive.h,
-// measured in docs/performance.md). Buffers at most one block; whole blocks at a block boundary go
-// out without a copy.
+// measured in docs/decisions.md, "Implementation choices"). Buffers at most one block; whole
+// blocks at a block boundary go out without a copy.
 class BlockWriter {
  public:
   BlockWriter(std::ostream& out, std::size_t block) : out_(out), block_(block) {}

@@ -38,7 +38,7 @@ void RowChunks::resize(std::size_t rows) {
     if (p == MAP_FAILED) throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
     // Advice only (a kernel without transparent huge pages, or set to never, ignores it); what it
-    // saves a long build: docs/performance.md.
+    // saves a long build: docs/decisions.md, "Implementation choices".
     ::madvise(p, chunk_bytes(), MADV_HUGEPAGE);
 #endif
     chunks_.push_back(static_cast<float*>(p));
