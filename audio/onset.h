@@ -1,7 +1,7 @@
 // Onset detection as librosa 0.10.2 does it (SPEC "Key nodes" -> "Onset nodes").
 //
-// onset_strength_envelope reproduces librosa.onset.onset_strength(y, sr=22050)
-// frame by frame; detect_onsets reproduces librosa.onset.onset_detect's peak
+// onset_strength_envelope (audio/onset_strength.h, the spectral front end) reproduces
+// librosa.onset.onset_strength(y, sr=22050) frame by frame; detect_onsets reproduces librosa.onset.onset_detect's peak
 // picking (librosa.util.peak_pick with onset_detect's defaults on the
 // envelope normalised to [0, 1]), keeps the peaks whose raw strength reaches
 // min_onset_strength, and backtracks them with librosa.onset.onset_backtrack.
@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "audio/onset_strength.h"
 #include "audio/wav.h"
 
 namespace gmg::audio {
@@ -43,17 +44,6 @@ struct OnsetAnalysis {
   std::vector<double> onset_times() const;
 };
 
-// librosa.onset.onset_strength(y=y, sr=22050) with its defaults. Resamples to
-// 22050 Hz internally (resample_poly) when audio.sample_rate differs.
-// Empty audio gives an envelope of one frame (0). Throws gmg::Error when
-// audio.sample_rate is not positive.
-std::vector<float> onset_strength_envelope(const Audio& audio);
-
-// The same, taking the audio: its samples are released when the envelope is done, not kept by the
-// caller beside the analysis (an hour at 16 kHz is 230 MB). The audio is resampled to 22050 Hz a
-// stretch at a time as the spectrogram reaches it, so the analysis never holds it twice.
-std::vector<float> onset_strength_envelope(Audio&& audio);
-
 // Envelope, peak picking, the raw-strength filter and backtracking.
 OnsetAnalysis detect_onsets(const Audio& audio, const OnsetParams& params);
 OnsetAnalysis detect_onsets(Audio&& audio, const OnsetParams& params);
@@ -62,11 +52,6 @@ OnsetAnalysis detect_onsets(Audio&& audio, const OnsetParams& params);
 // peak picking on the normalised envelope, the raw-strength filter and
 // backtracking. The result's `envelope` is `envelope`.
 OnsetAnalysis detect_onsets_in_envelope(const std::vector<float>& envelope, const OnsetParams& params);
-
-// librosa.power_to_db(power, ref=1, amin=1e-10) without top_db, 10 log10(max(1e-10, power)), as
-// the spectrogram computes it eight values at a time (exposed for tests): within a few units in the
-// last place of 10 * std::log10; +inf stays +inf, NaN gives -100 as std::max(1e-10, NaN) does.
-double power_to_db(double power);
 
 // Motion frames of the onsets: round(t * fps) of every onset time, sorted,
 // without duplicates. Onsets outside [0, num_frames) are dropped, not clipped:

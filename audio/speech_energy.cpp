@@ -41,8 +41,4 @@ std::vector<float> energy_db_on_grid(const EnergyTrack& track, double fps, int f
   return db;
 }
 
-std::vector<float> frame_energy_db(const Audio& audio, double fps, int frames) {
-  return energy_db_on_grid(energy_track(audio), fps, frames);
-}
-
 }  // namespace gmg::audio

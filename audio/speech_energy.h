@@ -25,7 +25,4 @@ EnergyTrack energy_track(const Audio& audio);
 inline constexpr float kSilenceDb = -100.0f;
 std::vector<float> energy_db_on_grid(const EnergyTrack& track, double fps, int frames);
 
-// energy_db_on_grid(energy_track(audio), fps, frames).
-std::vector<float> frame_energy_db(const Audio& audio, double fps, int frames);
-
 }  // namespace gmg::audio

@@ -5,6 +5,7 @@
 
 #include "audio/onset.h"
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace gmg::audio {
 namespace {
@@ -16,19 +17,6 @@ double percentile_of(std::vector<double> v, double p) {
       std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p / 100.0 * static_cast<double>(v.size()))));
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
-}
-
-std::vector<double> moving_average(const std::vector<double>& x, int half) {
-  const int n = static_cast<int>(x.size());
-  std::vector<double> y(x.size());
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
-    int count = 0;
-    for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k, ++count)
-      sum += x[static_cast<std::size_t>(k)];
-    y[static_cast<std::size_t>(i)] = sum / count;
-  }
-  return y;
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 //   loudness  = (energy dB - the recording's speaking level) / 10 dB, clamped to [-4, 1]; the
 //               speaking level is the 90th percentile of the frames' energy (audio/speech_energy.h),
 //               so -4 is 40 dB below speech: silence.
-//   onsets    = log(1 + onset strength) per frame (the mean envelope value of audio/onset.h over the
+//   onsets    = log(1 + onset strength) per frame (the mean envelope value of audio/onset_strength.h over the
 //               frame), over its 90th percentile, clamped to [0, 3].
 // Both smoothed by a centred moving average over smooth_s (9 frames at 30 fps): syllables come
 // 4-6 a second, and a gesture follows the phrase's loudness, not each syllable.

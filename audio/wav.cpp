@@ -16,6 +16,7 @@
 #include <cstring>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "audio/resample.h"
 #include "engine/core/error.h"
@@ -51,10 +52,6 @@ std::uint16_t u16_at(const Bytes& b, std::size_t p) { return static_cast<std::ui
 std::uint32_t u32_at(const Bytes& b, std::size_t p) {
   return static_cast<std::uint32_t>(b[p]) | (static_cast<std::uint32_t>(b[p + 1]) << 8) |
          (static_cast<std::uint32_t>(b[p + 2]) << 16) | (static_cast<std::uint32_t>(b[p + 3]) << 24);
-}
-
-std::uint64_t u64_at(const Bytes& b, std::size_t p) {
-  return static_cast<std::uint64_t>(u32_at(b, p)) | (static_cast<std::uint64_t>(u32_at(b, p + 4)) << 32);
 }
 
 // A four-character code for messages: printable characters as they are,
@@ -228,37 +225,8 @@ Chunks find_chunks(const std::string& path, const Bytes& b) {
   return c;
 }
 
-// One stored sample at byte p as a double (PCM scaled to [-1, 1), float as stored).
-double sample_at(const Bytes& b, std::size_t p, const Format& fmt) {
-  if (fmt.kind == Format::Kind::kPcm) {
-    switch (fmt.bits) {
-      case 8:
-        return (static_cast<int>(b[p]) - 128) / 128.0;  // 8-bit WAV is unsigned
-      case 16:
-        return static_cast<std::int16_t>(u16_at(b, p)) / 32768.0;
-      case 24: {
-        std::int32_t s = static_cast<std::int32_t>(b[p] | (b[p + 1] << 8) | (b[p + 2] << 16));
-        if (s & 0x800000) s -= 0x1000000;
-        return s / 8388608.0;
-      }
-      default:
-        return static_cast<std::int32_t>(u32_at(b, p)) / 2147483648.0;
-    }
-  }
-  if (fmt.bits == 32) {
-    std::uint32_t u = u32_at(b, p);
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-  }
-  std::uint64_t u = u64_at(b, p);
-  double v;
-  std::memcpy(&v, &u, sizeof v);
-  return v;
-}
-
-// The stored sample types, each read as sample_at reads it, the whole chunk in one loop per
-// format (sample_at decides the format for every sample).
+// The stored sample types: each reads one sample at p as a double (PCM scaled to [-1, 1), float as
+// stored), so that a chunk is decoded in one loop per format (with_sample_type picks it once).
 template <typename T>
 T load_le(const unsigned char* p) {
   T v;
@@ -308,9 +276,9 @@ struct Float64 {
   static double read(const unsigned char* p) { return load_le<double>(p); }
 };
 
-// out[i] = the mean of frame i's channels, computed as decode_samples does (the sum from 0.0 in
-// channel order, times 1 / channels, rounded to float), in a loop the compiler vectorises. Returns
-// false when a sample is not finite (the caller then finds it).
+// out[i] = the mean of frame i's channels (the sum from 0.0 in channel order, times 1 / channels,
+// rounded to float), in a loop the compiler vectorises. Returns false when a sample is not finite
+// (the caller then finds it: first_non_finite).
 template <typename F>
 bool mix_down(const unsigned char* data, std::size_t frames, int channels, float* out) {
   const double inv_channels = 1.0 / channels;
@@ -337,20 +305,31 @@ bool mix_down(const unsigned char* data, std::size_t frames, int channels, float
   return finite != 0;
 }
 
-bool mix_down(const Format& fmt, const unsigned char* data, std::size_t frames, float* out) {
-  if (fmt.kind == Format::Kind::kFloat)
-    return fmt.bits == 32 ? mix_down<Float32>(data, frames, fmt.channels, out)
-                          : mix_down<Float64>(data, frames, fmt.channels, out);
+// Calls visit(T{}) with the sample type T of the format.
+template <typename Visit>
+auto with_sample_type(const Format& fmt, const Visit& visit) {
+  if (fmt.kind == Format::Kind::kFloat) return fmt.bits == 32 ? visit(Float32{}) : visit(Float64{});
   switch (fmt.bits) {
     case 8:
-      return mix_down<Pcm8>(data, frames, fmt.channels, out);
+      return visit(Pcm8{});
     case 16:
-      return mix_down<Pcm16>(data, frames, fmt.channels, out);
+      return visit(Pcm16{});
     case 24:
-      return mix_down<Pcm24>(data, frames, fmt.channels, out);
+      return visit(Pcm24{});
     default:
-      return mix_down<Pcm32>(data, frames, fmt.channels, out);
+      return visit(Pcm32{});
   }
+}
+
+// The first of `count` samples at data that is not finite (count when there is none), and its value.
+template <typename F>
+std::pair<std::size_t, double> first_non_finite(const unsigned char* data, std::size_t count) {
+  if constexpr (F::kAlwaysFinite) return {count, 0.0};
+  for (std::size_t k = 0; k < count; ++k) {
+    const double v = F::read(data + k * F::kBytes);
+    if (!std::isfinite(v)) return {k, v};
+  }
+  return {count, 0.0};
 }
 
 // The data chunk's frames, each the mean of its channels. With a file, the pages of the chunk are
@@ -382,7 +361,10 @@ Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c, c
   std::size_t released = 0;
   for (std::size_t i0 = 0; i0 < frames; i0 += kStretch) {
     const std::size_t n = std::min<std::size_t>(kStretch, frames - i0);
-    finite = mix_down(fmt, b.data() + c.data_body + i0 * frame_bytes, n, stretch) && finite;
+    const unsigned char* data = b.data() + c.data_body + i0 * frame_bytes;
+    finite =
+        with_sample_type(fmt, [&](auto type) { return mix_down<decltype(type)>(data, n, fmt.channels, stretch); }) &&
+        finite;
     a.samples.insert(a.samples.end(), stretch, stretch + n);
     const std::size_t done = c.data_body + (i0 + n) * frame_bytes;
     if (file && done - released >= kRelease) {
@@ -391,24 +373,15 @@ Audio decode_samples(const std::string& path, const Bytes& b, const Chunks& c, c
     }
   }
   if (finite) return a;
-  // A sample is NaN or infinite: found again one by one, for the message.
-  a.samples.resize(static_cast<std::size_t>(frames));
-  const double inv_channels = 1.0 / fmt.channels;
-  std::size_t p = static_cast<std::size_t>(c.data_body);
-  for (std::size_t i = 0; i < a.samples.size(); ++i) {
-    double sum = 0.0;
-    for (int ch = 0; ch < fmt.channels; ++ch, p += static_cast<std::size_t>(bytes_per_sample)) {
-      const double v = sample_at(b, p, fmt);
-      if (!std::isfinite(v)) {
-        throw Error(error_at_byte(path, static_cast<long long>(p),
-                                  std::string("sample ") + std::to_string(i) + " (channel " + std::to_string(ch) +
-                                      ") is " + (std::isnan(v) ? "NaN" : "infinite")));
-      }
-      sum += v;
-    }
-    a.samples[i] = static_cast<float>(sum * inv_channels);
-  }
-  return a;
+  // A sample is NaN or infinite: the first one in the file, for the message.
+  const std::size_t count = static_cast<std::size_t>(frames) * static_cast<std::size_t>(fmt.channels);
+  const auto [k, v] =
+      with_sample_type(fmt, [&](auto type) { return first_non_finite<decltype(type)>(b.data() + c.data_body, count); });
+  if (k == count) return a;
+  const std::size_t channels = static_cast<std::size_t>(fmt.channels);
+  throw Error(error_at_byte(path, static_cast<long long>(c.data_body + k * bytes_per_sample),
+                            std::string("sample ") + std::to_string(k / channels) + " (channel " +
+                                std::to_string(k % channels) + ") is " + (std::isnan(v) ? "NaN" : "infinite")));
 }
 
 }  // namespace

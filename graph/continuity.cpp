@@ -36,9 +36,8 @@ namespace {
 
 // The memory the parallel search may give the survivors it keeps for pruning 2 (kept_survivors).
 // Above exact_frames a frame searched again costs the walk of its whole leaf (graph/params.h
-// kLeafWalkChecks), alone on one thread: with 256 MiB (16 kept at 19 h, 55 joints) a 19 h build
-// took 17 min of wall time, its last ten on one core and mostly in those searches; with 512 MiB
-// (32 kept) it takes 5 min 14 s, for 0.25 GiB more at its peak (docs/performance.md).
+// kLeafWalkChecks), alone on one thread: with half this budget a 19 h build spent most of its wall
+// time on one core in those searches (docs/decisions.md, "Implementation choices").
 constexpr std::size_t kKeptSurvivorBytes = std::size_t{512} << 20;
 // At least this many a frame however long the reference (the bound is nearly always settled among
 // the first few), at most what a frame's count (one byte) holds.

@@ -18,7 +18,8 @@
 
 #include "engine/core/checksum.h"
 #include "engine/core/error.h"
-#include "engine/core/files.h"
+#include "engine/core/file_write.h"
+#include "engine/core/mapped_file.h"
 #include "engine/motion/motion.h"
 
 namespace gmg {
@@ -28,10 +29,10 @@ constexpr std::size_t kGraphAlign = 4096;  // the sections read in place start a
 // Magic, version, payload size, and how many of the payload's bytes the checksum covers.
 constexpr std::size_t kGraphHeaderBytes = sizeof kGraphMagic + sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t);
 
-// A graph file is written in whole blocks of this many bytes from its start (engine/core/files.h
-// BlockWriter): reenacting 77 s from a 19 h graph took 1.8 times the CPU time from the file written
-// in the 4 MB pieces of its arrays, each after a few bytes of counts and padding, as from the same
-// bytes read back from the disk or written in these blocks.
+// A graph file is written in whole blocks of this many bytes from its start (BlockWriter,
+// engine/core/file_write.h): a file served from its mapping is read as fast as the page cache's
+// folios are large, and written in smaller pieces it was served much slower
+// (docs/decisions.md, "Implementation choices").
 constexpr std::size_t kGraphWriteBlock = std::size_t{16} << 20;
 
 // Writes the payload to a stream, or only counts and checksums it (out == nullptr), so the
@@ -151,9 +152,9 @@ void in_chunks(const ArchiveSource& src, const T* p, std::size_t n, const F& vis
 }
 
 // n value-initialised values for a large array the load fills: allocated, advised to take huge
-// pages (engine/core/files.h advise_huge_pages), and only then touched. The nodes and edges a load
-// copies are its private memory (324 MiB for a 19 h reference), whose first touch in 4 KiB pages
-// was a sixth of the CPU time of a reenactment from it.
+// pages (engine/core/mapped_file.h advise_huge_pages), and only then touched: the nodes and edges a
+// load copies are its private memory, whose first touch in 4 KiB pages costs a long reference's
+// reenactment much of its time (docs/performance.md, "Length of the reference: reenactment").
 template <typename T>
 std::vector<T> huge_vector(std::size_t n) {
   std::vector<T> v;
@@ -289,8 +290,8 @@ class ArchiveReader {
 };
 
 // How many of p[0 .. n) are finite. x - x is 0 for a finite x and NaN for an infinite or NaN one,
-// and a count without an early exit vectorises: the key poses' pass (650 MB at 19 h, 55 joints)
-// ran at a value per cycle with std::isfinite and a short-circuit, a load's largest cost.
+// and a count without an early exit vectorises, where std::isfinite and a short-circuit ran at a
+// value per cycle over a load's largest arrays (docs/decisions.md, "Implementation choices").
 template <typename T>
 std::size_t count_finite(const T* p, std::size_t n) {
   std::size_t good = 0;

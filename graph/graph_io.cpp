@@ -156,8 +156,8 @@ MotionGraph graph_load(const std::string& path, MotionCheck motion) {
   ArchiveSource src{file->data(), file->size(), file.get(), file};
   MotionGraph g = parse_graph(src, path, motion);
   // No MADV_RANDOM: a reenactment reads the key poses and its paths' frames here and there, but
-  // on a file not yet in the page cache the kernel's readahead makes its first run 1.8 times as
-  // fast (19 h graph: 3.0 s against 5.4 s, docs/performance.md) for the same later runs.
+  // on a file not yet in the page cache the kernel's readahead makes its first run faster
+  // (docs/decisions.md, "The graph file").
   g.source = std::move(file);
   g.check_unchanged();
   return g;

@@ -38,21 +38,19 @@ struct GraphParams {
   // its threshold. One rule at every reference length, so edges grow linearly with frames and
   // change smoothly with the reference's length. 0 = no bound (the paper's analysis, whose edges
   // grow as frames^2).
-  // 4 and 32 (128 candidates): on the shared recordings the ablation's sync, jerk and behaviour
-  // stay within their spread of the unbounded analysis (ZEGGS 6 folds x 5 seeds: corr lift +0.596
-  // against +0.603, jerk 0.98x against 1.03x; BEAT2 +0.285 against +0.279, 1.18x against 1.16x),
-  // while the mean out-degree of synthetic speakers levels off (3.8 at 15 min, 4.0 at 1 h, where
-  // 20 and 4 gave 5.7 and 8.1): a frame's candidates are mostly a few runs of consecutive frames,
-  // so a large candidate budget and a small transition budget keep every frame's few distinct
-  // transitions.
+  // 4 and 32 (128 candidates): the ablation's sync, jerk and behaviour stay within their spread of
+  // the unbounded analysis while the mean out-degree levels off with the reference's length (a
+  // frame's candidates are mostly a few runs of consecutive frames, so a large candidate budget and
+  // a small transition budget keep every frame's few distinct transitions). The figures:
+  // docs/decisions.md (Parameters).
   int max_transitions = 4;
   int candidates_per_transition = 32;
   NeighbourSearch neighbours = NeighbourSearch::Auto;
   // Auto: the search runs to the end up to this many frames (8 min at 30 fps: every reference of
   // the paper's gets its exact candidates, the same in every build), and within the ann_checks
   // budget above, where the time of an exact search per frame keeps growing with the reference. The
-  // budgeted search misses few candidates (recall >= 0.95 of the exact pairs, docs/performance.md),
-  // so the edges do not jump at this length.
+  // budgeted search misses few candidates (its recall: docs/performance.md), so the edges do not
+  // jump at this length.
   int exact_frames = 15000;
   // Approximate: frames examined per frame at most (whole leaves of 16 of the tree, nearest box
   // first); 0 = until exact. Under Auto this is the budget up to kAnnChecksFrames frames, and it
@@ -68,9 +66,7 @@ struct GraphParams {
 
 // Auto's budget beyond an hour at 30 fps: ann_checks * (1 + kAnnChecksGrowth * log2(frames /
 // kAnnChecksFrames)), a quarter more per doubling of the reference (graph/neighbours.h
-// search_checks). A fixed budget loses recall as the tree grows (2,000 checks on synthetic
-// speakers of 25 joints: 0.97 of the exact candidates at 1 h, 0.95 at 2 h, 0.93 at 4 h, 0.90 at
-// 8 h); this keeps it at about 0.97 (2,500 at 2 h: 0.97, 3,000 at 4 h, 3,500 at 8 h) for a
+// search_checks). A fixed budget loses recall as the tree grows; this keeps it about level for a
 // cost per frame that grows with the log of the length, as the tree's depth does.
 // docs/performance.md, "The k-d tree against FLANN", has the measurements.
 inline constexpr int kAnnChecksFrames = 108000;
@@ -79,19 +75,17 @@ inline constexpr double kAnnChecksGrowth = 0.25;
 // The build asks for the frames of each leaf of the k-d tree (16 neighbouring poses) together: one
 // walk of the tree for the leaf, nearest box first, that examines at most kLeafWalkChecks times the
 // per-frame budget above, and every frame of the leaf takes its members from every leaf the walk
-// opens. A frame then sees more of the tree for less work than its own walk of the budget: on a
-// synthetic speaker of 4 h at 3,000 checks, the frames' own walks find 0.97 of the exact candidates
-// and 0.92 of the exact edges (a missed candidate changes what pruning 2 keeps after it), the
-// leaf's walk of 6 x 3,000 finds 0.99 and 0.98 for about a tenth more time in the search (4 x: 0.98
-// and 0.95, 8 x: 0.997 and 0.994). docs/performance.md, "Searching a leaf's frames together".
+// opens. A frame then sees more of the tree for less work than its own walk of the budget, and
+// finds more of the exact candidates and edges (a missed candidate changes what pruning 2 keeps
+// after it). Why 6: docs/performance.md, "Searching a leaf's frames together".
 inline constexpr int kLeafWalkChecks = 6;
 
 // The search reads each candidate's positions and velocity from a copy of the rows kept in the
 // k-d tree's leaf order (a leaf's frames then lie side by side instead of across the whole
 // reference), when that copy needs at most this many bytes. The copy is twice the positions (the
 // velocities precomputed), so above the budget the frame-order rows are read instead: the graph is
-// the same either way, bit for bit. 1 GiB holds 25 joints to 15 h and 55 joints to 7 h at 30 fps; the copy
-// saves about 6 % of the build's CPU at 4 h (docs/performance.md) and nothing at 15 min.
+// the same either way, bit for bit. 1 GiB holds 25 joints to 15 h and 55 joints to 7 h at 30 fps;
+// what the copy saves: docs/performance.md.
 inline constexpr long long kLeafOrderRowsBytes = 1LL << 30;
 
 // Throws gmg::Error naming the first key out of range.

@@ -51,11 +51,7 @@ struct SearchParams {
   // this many for each subsequence (search/initialisation.h: blocks of 64 consecutive key nodes,
   // every stride-th block, the offset drawn per subsequence), and what ranking costs stops growing
   // with the reference; with fewer every key node is ranked, exactly as before, so references of up
-  // to about 38 minutes (3.6 key nodes a second in the synthetic speaker; BEAT2's 63 s clip has 170,
-  // the 427 s speaker 1,543) plan as they did. 8192 against 16384: the mean path cost of 77 s of
-  // speech over 5 seeds was within 0.5 % at 1 h (4.765 against 4.770 ranking all 13,002) and at 4 h
-  // (4.720 against 4.705), at half the ranking time; 4096 raised it by 7 % (1 h) and 12 % (4 h)
-  // (docs/performance.md).
+  // to about 38 minutes plan as they did. Why 8192: docs/decisions.md (Parameters).
   int start_candidates = 8192;
 
   // ---- natural planner only ----
@@ -75,41 +71,34 @@ struct SearchParams {
   // a gesture and only adds a junction.
   int merge_below = 10;
   // Seeded variety (natural planner): the share of the reference's seconds each seed withholds
-  // as places to jump to, so different seeds give clearly different motions (search/planner.cpp).
-  // 0: every seed plans the same. 0.3 against 0.4: more of the reference to choose from (no frame
-  // past 3 plays in 62 s of new BEAT2 speech), seeds of 11 s ZEGGS folds still 0.29 of the
-  // reference's pose variation apart (0.14 at 0.25).
+  // as places to jump to, so different seeds give clearly different motions (search/start_ranking.h).
+  // 0: every seed plans the same. Why 0.3: docs/decisions.md (Parameters).
   double variety = 0.3;
 
   // ---- speech-driven (natural planner; search/speech_match.h, search/reuse.h) ----
   // The knob that trades sync for smoothness: the weight of the speech distance (mean squared
   // feature distance, ~0.1 for well matched speech, 1-3 for unrelated) in every candidate's cost,
   // against the junction cost (1 = a typical transition of the graph). 0 = the natural planner
-  // without speech.
-  // 3 against 1.5: new BEAT2 speech corr lift +0.17 -> +0.21, beat lift +0.006 -> +0.012, for
-  // jerk 1.17 -> 1.18 x the reference's (docs/results.md has the curve).
+  // without speech. Why 3: docs/decisions.md (Parameters; docs/results.md has the curve).
   double speech_weight = 3.0;
   // Part of the speech distance: in test pauses, rest_weight x the reference's motion activity
-  // (1 = its typical motion) per frame. BEAT2's speaker moves most between phrases: at 1 the
-  // output's longest rest on new speech was 0.3 s against the capture's 0.77 s, at 6 0.57 s, at
-  // 12 0.69 s; resting where the speech rests also lifted its sync (new speech corr lift
-  // +0.15 -> +0.21, ZEGGS folds +0.57 -> +0.60; 24 replayed the few still stretches more).
+  // (1 = its typical motion) per frame: BEAT2's speaker moves most between phrases, and the output
+  // should rest where the speech rests. Why 12: docs/decisions.md (Parameters).
   double rest_weight = 12.0;
   // Part of the speech cost: beat_weight x the end cost of a path (search/speech_match.h end_cost:
-  // 0 when it ends on a kinematic beat of the reference, 1 far from one). 1 against 0.5: ZEGGS beat
-  // consistency lift 0.069 -> 0.080 at speech_weight 2.
+  // 0 when it ends on a kinematic beat of the reference, 1 far from one). Why 1: docs/decisions.md
+  // (Parameters).
   double beat_weight = 1.0;
   // Weight of the reuse cost (a stretch just played costs 1 per play), and the half-life of a play
   // in output seconds. A replay is worth it only when the speech distance it saves, at most about
   // speech_weight x the speech distance (1 = unrelated speech), exceeds reuse_weight x its decayed
-  // plays squared. 120 s against 30 s: plays within one 60-90 s output barely decay, so a frame's
-  // fourth play costs 3 x 9 and does not happen (with 30 s, 4 plays in 6 of 10 new-speech outputs).
+  // plays squared. With a half-life of 120 s, plays within one 60-90 s output barely decay, so a
+  // frame's fourth play costs 3 x 9 and does not happen (the figures: docs/decisions.md, Parameters).
   double reuse_weight = 3.0;
   double reuse_halflife_s = 120.0;
   // And a cap: a frame played reuse_cap_plays times within reuse_cap_window_s output seconds
-  // costs reuse_weight x 100 more (search/reuse.h). The decayed count alone let a stretch that
-  // suits many pauses be played a fourth time within a minute (rest_weight 12: 1 of 10 outputs
-  // of new speech). 0 plays = no cap.
+  // costs reuse_weight x 100 more (search/reuse.h): the decayed count alone let a stretch that
+  // suits many pauses be played a fourth time within a minute (docs/decisions.md). 0 plays = no cap.
   int reuse_cap_plays = 3;
   double reuse_cap_window_s = 90.0;
   // And no jump into a frame played within the last no_return_s output seconds (a path that plays

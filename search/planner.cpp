@@ -138,9 +138,8 @@ class Planner {
     for (std::size_t i = 0; i < near; ++i)
       if (continuing_from_ >= 0 && candidates[i].path.front() == continuing_from_) return candidates[i];
     // One step of lookahead: prefer the near-equal paths whose end continues naturally into the
-    // next subsequence (a junction avoided there is worth more than the small cost difference).
-    // Measured on 3 folds x 5 seeds: BEAT2 transitions 1.10 -> 1.03 per second, BC lift +0.041 ->
-    // +0.072; ZEGGS jerk 1.12 -> 1.09 x truth.
+    // next subsequence (a junction avoided there is worth more than the small cost difference;
+    // measured: docs/decisions.md, Junction-aware search).
     if (k + 1 < subs_.size()) {
       BeamRequest next;
       next.target_length = subs_[k + 1].length;
@@ -193,7 +192,8 @@ class Planner {
     // test's key frame is, instead of as this one's last frame, one frame early; the next piece
     // continues from it. Besides the rhythm, this keeps playback at the capture's speed: a path
     // that keeps its stop node advances len source frames in len - 1 output steps, plus one more
-    // into the next piece, so every piece played ~1/l_sub fast (BEAT2 jerk 1.19 -> 1.08 x truth).
+    // into the next piece, so every piece played ~1/l_sub fast (docs/decisions.md, Junction-aware
+    // search).
     if (natural_ && seg.path.size() >= 2) seg.path.pop_back();
   }
 

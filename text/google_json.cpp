@@ -10,14 +10,17 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
+#include "text/json_words.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
 #include "text/transcript_util.h"
 
 namespace gmg::text {
 
+using detail::check_word_order;
 using detail::format_seconds;
 using detail::json_fail;
+using detail::json_word_text;
 using detail::quote_field;
 using detail::sort_words;
 
@@ -103,20 +106,14 @@ std::vector<Word> parse_google_json(const std::string& bytes, const std::string&
       if (!w.is_object()) json_fail(path, wh, "expected a word object");
       const json* st = find_either(w, "start_time", "startTime");
       const json* en = find_either(w, "end_time", "endTime");
-      auto word = w.find("word");
       if (!st) json_fail(path, wh, "missing \"start_time\"");
       if (!en) json_fail(path, wh, "missing \"end_time\"");
-      if (word == w.end()) json_fail(path, wh, "missing \"word\"");
-      if (!word->is_string()) json_fail(path, wh + ".word", "expected a string");
       Word out;
+      out.text = json_word_text(w, path, wh);
       out.start = json_time(*st, path, wh + ".start_time");
       out.end = json_time(*en, path, wh + ".end_time");
-      out.text = std::string(trim(word->get_ref<const std::string&>()));
       if (out.start < 0) json_fail(path, wh, "negative start time " + format_seconds(out.start));
-      if (out.end < out.start)
-        json_fail(path, wh,
-                  "word " + quote_field(out.text) + " ends (" + format_seconds(out.end) + " s) before it starts (" +
-                      format_seconds(out.start) + " s)");
+      check_word_order(out.text, out.start, out.end, path, wh);
       if (out.text.empty()) continue;
       words.push_back(std::move(out));
     }

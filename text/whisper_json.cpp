@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -11,15 +12,17 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
+#include "text/json_words.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
 #include "text/transcript_util.h"
 
 namespace gmg::text {
 
+using detail::check_word_order;
 using detail::format_seconds;
 using detail::json_fail;
-using detail::quote_field;
+using detail::json_word_text;
 using detail::sort_words;
 
 namespace {
@@ -44,20 +47,13 @@ std::optional<double> optional_time(const json& w, const char* key, const std::s
 }
 
 RawWord raw_word(const json& w, const std::string& path, const std::string& where) {
-  if (!w.is_object()) json_fail(path, where, "expected a word object");
-  const auto text = w.find("word");
-  if (text == w.end()) json_fail(path, where, "missing \"word\"");
-  if (!text->is_string()) json_fail(path, where + ".word", "expected a string");
-  RawWord r{optional_time(w, "start", path, where), optional_time(w, "end", path, where),
-            std::string(trim(text->get_ref<const std::string&>()))};
+  std::string text = json_word_text(w, path, where);
+  RawWord r{optional_time(w, "start", path, where), optional_time(w, "end", path, where), std::move(text)};
   if (r.start.has_value() != r.end.has_value())
     json_fail(
         path, where,
         std::string("has \"") + (r.start ? "start" : "end") + "\" but no \"" + (r.start ? "end" : "start") + "\"");
-  if (r.start && *r.end < *r.start)
-    json_fail(path, where,
-              "word " + quote_field(r.text) + " ends (" + format_seconds(*r.end) + " s) before it starts (" +
-                  format_seconds(*r.start) + " s)");
+  if (r.start) check_word_order(r.text, *r.start, *r.end, path, where);
   return r;
 }
 

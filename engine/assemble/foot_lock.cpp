@@ -183,8 +183,8 @@ void foot_lock(Motion& out, const std::vector<SourceClock>& clock, const std::ve
                   free_pos, free_rot);
       // A foot on its way in a step is planted where it is once the step is past its middle and the
       // source has the foot on the ground (waiting for the step to end left it sliding along the
-      // floor: BEAT2 slide share 4 % against 3 %; earlier, it would be planted again where it just
-      // left), and whatever height it still has it lets down over what is left of the step
+      // floor, docs/decisions.md Blending; earlier, it would be planted again where it just left),
+      // and whatever height it still has it lets down over what is left of the step
       // (planted mid-arc it would stay in the air).
       if (contact && !locked && 2 * step_at >= step_frames) {
         locked = true;

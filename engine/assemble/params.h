@@ -29,10 +29,8 @@ struct BlendParams {
   // side (engine/assemble/blend.h); they play unnatural edges inside a path unblended.
   BlendMode mode = BlendMode::Inertialize;
   // Inertialization half-life. 0.3 s carries an arm through a junction at its own speed and hands
-  // over within about 1.4 s. 0.2 s was chosen for the natural planner; the speech-driven planner
-  // jumps more often (about 1.2 transitions a second on BEAT2) and to farther poses, and 0.3 s
-  // took its BEAT2 jerk ratio from 1.22 to 1.15 (6 folds x 10 seeds) while ZEGGS stayed at 1.03;
-  // 0.1 s left visibly faster steps.
+  // over within about 1.4 s: the speech-driven planner jumps often and to far poses, and a shorter
+  // half-life left visibly faster steps (docs/decisions.md, Parameters).
   double halflife_s = 0.3;
   // Anchor: a new piece's root continues horizontally from where the output was and relaxes
   // toward the capture's own position with half-life root_halflife_s. Free: the root plays its

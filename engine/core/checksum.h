@@ -1,8 +1,8 @@
 // The graph file's 64-bit checksum: XXH3-64 with its default secret and seed 0, from the xxHash
 // library (libxxhash-dev, used header-only so the build's vector width applies). XXH3's value
 // does not depend on the vector code that computes it or on how the bytes are split into add()
-// calls, and it runs at several times the speed of a byte-serial hash (about 30 GB/s here against
-// 9 for the XXH64-like sum of graph format 6), so a load's checksum pass is bound by memory.
+// calls, and it runs at several times the speed of a byte-serial hash, so a load's checksum pass is
+// bound by memory (docs/decisions.md, "Implementation choices").
 #pragma once
 
 #include <cstddef>

@@ -5,8 +5,8 @@
 // the outputs being written, and the process then ends as the signal would, with its default
 // action: a shell sees status 128 + N, 130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP, and a
 // parent that waits sees "killed by signal N" (so a shell loop around gmg stops on Ctrl-C as it
-// would around any tool). Most commands die at once (InterruptCleanup, engine/core/files.h);
-// `batch` and `render` first finish or stop their step (InterruptFlag, then Interrupted).
+// would around any tool). Most commands die at once (InterruptCleanup); `batch` and `render`
+// first finish or stop their step (InterruptFlag, then Interrupted).
 #pragma once
 
 #include <atomic>
@@ -17,9 +17,40 @@
 
 namespace gmg {
 
+// The signals an interrupted command cleans up after.
+inline constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+// A process-wide table of temporary files that a SIGINT, SIGTERM or SIGHUP removes (see
+// InterruptCleanup). register_temporary_file returns its slot, or -1 when the table (256 paths
+// of up to 4095 bytes) is full and the file will not be removed on a signal.
+int register_temporary_file(const std::string& path) noexcept;
+void unregister_temporary_file(int slot) noexcept;
+// Unlinks every registered file. Async-signal-safe (unlink(2) on a fixed array): for handlers.
+void remove_registered_temporary_files() noexcept;
+// Removes them and ends the process as `sig` would, its handler reset to the default.
+// Async-signal-safe: for handlers.
+void remove_temporaries_and_die(int sig) noexcept;
+
+// While alive, SIGINT, SIGTERM and SIGHUP remove the registered temporary files and then end the
+// process as the signal would (the previous handlers are restored on destruction; the exit
+// contract is in engine/core/interrupt.h). With a program name, the handler first writes
+// "<program>: interrupted by SIGINT; no output written" on standard error. cli_main holds one
+// for every subcommand; `gmg batch` and `gmg render` install a graceful handler on top
+// (InterruptFlag), which removes the temporary files before dying on a second signal.
+class InterruptCleanup {
+ public:
+  explicit InterruptCleanup(const char* program = nullptr);
+  ~InterruptCleanup();
+  InterruptCleanup(const InterruptCleanup&) = delete;
+  InterruptCleanup& operator=(const InterruptCleanup&) = delete;
+
+ private:
+  struct Saved;
+  Saved* saved_;
+};
 // While alive, the first SIGINT, SIGTERM or SIGHUP only raises flag(): the job notices it between
 // steps, stops, removes its partial outputs and reports. A second one does not wait: it removes
-// the registered temporary files (engine/core/files.h) and ends the process as the signal would.
+// the registered temporary files and ends the process as the signal would.
 // The previous handlers are restored on destruction. One at a time.
 class InterruptFlag {
  public:

@@ -52,6 +52,10 @@ inline constexpr int kMaxSampleRate = 192000;
 // frame count derived from it (at kMaxFps) below kMaxFrames.
 inline constexpr double kMaxAudioSeconds = 24.0 * 3600.0;
 
+// Largest .npz member or .npy array read: far above any motion capture (an hour of SMPL-X at 30
+// fps in float64 is 140 MB), far below what would exhaust memory on a crafted archive.
+inline constexpr std::uint64_t kMaxNpyBytes = std::uint64_t{1} << 31;
+
 // ---- Generated output ---------------------------------------------------------------------------
 
 // A reenactment (or synthetic clip) may have at most this many frames: 92 h at 30 fps.

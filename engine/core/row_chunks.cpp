@@ -37,8 +37,8 @@ void RowChunks::resize(std::size_t rows) {
     void* p = ::mmap(nullptr, chunk_bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
-    // Advice only (a kernel without transparent huge pages, or set to never, ignores it). On a
-    // 4-hour, 55-joint reference it took the build from 102 s to 80 s of CPU.
+    // Advice only (a kernel without transparent huge pages, or set to never, ignores it); what it
+    // saves a long build: docs/decisions.md, "Implementation choices".
     ::madvise(p, chunk_bytes(), MADV_HUGEPAGE);
 #endif
     chunks_.push_back(static_cast<float*>(p));

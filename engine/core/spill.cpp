@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 
 namespace gmg {
 

@@ -8,6 +8,7 @@
 #include "audio/onset.h"
 #include "audio/speech_energy.h"
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 #include "engine/metrics/naturalness.h"
 
 namespace gmg {
@@ -101,20 +102,6 @@ double correlation_at_lag(const std::vector<double>& a, const std::vector<double
   const double cov = sab - sa * sb / n, va = saa - sa * sa / n, vb = sbb - sb * sb / n;
   if (va <= 1e-12 * std::max(1.0, saa) || vb <= 1e-12 * std::max(1.0, sbb)) return 0.0;
   return cov / std::sqrt(va * vb);
-}
-
-// Centred moving average over 2 * half + 1 samples, shrunk at the ends.
-std::vector<double> moving_average(const std::vector<double>& x, int half) {
-  std::vector<double> y(x.size());
-  const int n = static_cast<int>(x.size());
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
-    int count = 0;
-    for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k, ++count)
-      sum += x[static_cast<std::size_t>(k)];
-    y[static_cast<std::size_t>(i)] = sum / count;
-  }
-  return y;
 }
 
 }  // namespace

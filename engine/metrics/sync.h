@@ -70,11 +70,8 @@ struct ControlledScore {
 // frame's time window, against the mean root-relative joint speed of that frame, both smoothed
 // over 0.2 s; the largest Pearson correlation over lags of the motion of -max_lag_s..+max_lag_s.
 // Gestures move most around stressed syllables, so real motion correlates with its own speech's
-// onset strength and not with another stretch of it. Measured on the shared recordings' truth
-// (thirds of 21-23 s, 8 shifts): ZEGGS 0.36-0.68 aligned against 0.03-0.07 shifted (2.7-4.4
-// shifted sd above); BEAT2 scott 0.10-0.15 against 0.04-0.07 (0.5-1.2 sd: its capture shows
-// little speech-motion synchrony at all, BC's lift is no larger). Needs >= 3 frames; 0 when
-// either signal is constant.
+// onset strength and not with another stretch of it (the shared recordings' captures score:
+// docs/evaluation.md). Needs >= 3 frames; 0 when either signal is constant.
 double metric_speech_correlation(const Eigen::MatrixXd& pos, double fps, const std::vector<float>& envelope,
                                  double max_lag_s = 0.25);
 

@@ -67,7 +67,7 @@ std::string bvh_format(const Motion& m) {
       for (Channel c : joint.channels) {
         const double v = is_position_channel(c) ? t[channel_axis(c)] : angles[rot_index++] / kDegToRad;
         // printf's "%.6f" without its locale and its arbitrary-precision digits (writing the values
-        // was a third of a short reenactment). A value that rounds to zero is written 0.000000
+        // was much of a short reenactment: docs/performance.md). A value that rounds to zero is written 0.000000
         // whatever its sign (-1e-9 and 1e-9 are one value in the file), so a motion that comes
         // back through another format keeps its bytes.
         if (!first_value) out += ' ';

@@ -1,6 +1,6 @@
-// NumPy arrays: .npy files and .npz archives (a zip of .npy files), the layer under
-// engine/motion/npz.h. Only what motion files need: little-endian float and integer arrays in C
-// order, and scalar text for writing. The zip layer is libzip.
+// NumPy arrays: .npy files, the members of .npz archives (a zip of .npy files, engine/motion/zip.h),
+// the layer under engine/motion/npz.h. Only what motion files need: little-endian float and
+// integer arrays in C order, and scalar text for writing.
 //
 // Reading is strict and bounded: the header is a Python dict literal with exactly the keys
 // 'descr', 'fortran_order' and 'shape'; the data must have exactly the size the shape says; an
@@ -10,7 +10,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,40 +45,5 @@ std::string npy_format(const std::string& dtype, const std::vector<std::uint64_t
 
 // The .npy bytes of a 0-d text array (dtype "<U<len>", UTF-32), as numpy saves a str. ASCII only.
 std::string npy_format_text(const std::string& text);
-
-// A read-only view of a zip archive held in memory (libzip).
-class ZipReader {
- public:
-  // Opens the archive in `bytes` (which must outlive the reader). `name` labels errors.
-  ZipReader(const std::string& bytes, const std::string& name);
-  ZipReader(std::string&& bytes, const std::string& name) = delete;  // a temporary would not outlive it
-  ~ZipReader();
-  ZipReader(const ZipReader&) = delete;
-  ZipReader& operator=(const ZipReader&) = delete;
-
-  // Member names in archive order.
-  const std::vector<std::string>& names() const { return names_; }
-  bool has(const std::string& member) const;
-  // The whole member, decompressed and CRC-checked. Its declared size is checked against the
-  // archive's size (deflate cannot expand more than about 1032:1) and against 2 GiB first.
-  std::string read(const std::string& member) const;
-
- private:
-  struct Handle;
-  std::unique_ptr<Handle> zip_;
-  std::string name_;
-  std::uint64_t archive_size_ = 0;
-  std::vector<std::string> names_;
-};
-
-struct ZipMember {
-  std::string name;
-  std::string bytes;
-  bool deflate = false;  // false: stored, as np.savez writes
-};
-
-// The bytes of a zip archive holding the members in order, every time stamp 1980-01-01 00:00
-// (as numpy writes), so the same members always give the same bytes.
-std::string zip_format(const std::vector<ZipMember>& members, const std::string& name);
 
 }  // namespace gmg

@@ -8,6 +8,7 @@
 #include "engine/core/files.h"
 #include "engine/core/strings.h"
 #include "engine/motion/npy.h"
+#include "engine/motion/zip.h"
 
 namespace gmg {
 namespace {

@@ -60,8 +60,7 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
 // overlaps the speech's analysis, and the peak grows by the smaller of the two in memory. The
 // limit is on both files, since a file's size says little about its decoded size (a compressed
 // audio file decodes to many times its size): 32 MiB is about 17 minutes of 16 kHz 16-bit WAV, 24
-// of 25-joint BVH. (A one-hour clip, 115 MB of audio and 79 MB of BVH, peaked 116 MiB
-// higher read side by side.)
+// of 25-joint BVH (what an hour's clip read side by side costs: docs/performance.md).
 constexpr std::uintmax_t kAlongsideFileBytes = std::uintmax_t{32} << 20;
 
 // Whether both files exist and are at most kAlongsideFileBytes.

@@ -16,6 +16,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/interrupt.h"
 #include "engine/core/strings.h"
 
 extern char** environ;

@@ -64,7 +64,7 @@ class VideoEncoder {
   EncoderSettings settings_;
   pid_t pid_ = -1;
   int pipe_fd_ = -1;
-  int temp_slot_ = -1;  // settings_.output in the interrupt registry (engine/core/files.h)
+  int temp_slot_ = -1;  // settings_.output in the interrupt registry (engine/core/interrupt.h)
   // ffmpeg's messages (its stderr): a temporary file unlinked as soon as it is opened, so that
   // nothing is left in the temporary directory even when gmg is killed; read through this fd.
   int log_fd_ = -1;

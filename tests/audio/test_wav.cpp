@@ -1,4 +1,5 @@
-// Tests of audio/wav: WAV decoding of every supported variant, byte-precise errors, writing.
+// Tests of audio/wav: WAV decoding of every supported variant (errors: test_wav_errors.cpp,
+// writing: test_wav_write.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "audio/resample.h"
 #include "audio/wav.h"
 #include "engine/core/error.h"
+#include "tests/audio/wav_bytes.h"
 #include "tests/core/helpers.h"
 #include "tests/test_support.h"
 
@@ -22,108 +24,7 @@ namespace {
 using gmg::audio::Audio;
 using gmg::testing::error_of;
 using gmg::testing::TempDir;
-using gmg::testing::write_text;
-
-// ---------------------------------------------------------------------------
-// Hand-made WAV bytes.
-
-void le16(std::string& s, std::uint32_t v) {
-  s.push_back(static_cast<char>(v & 0xFF));
-  s.push_back(static_cast<char>((v >> 8) & 0xFF));
-}
-void le24(std::string& s, std::uint32_t v) {
-  le16(s, v & 0xFFFF);
-  s.push_back(static_cast<char>((v >> 16) & 0xFF));
-}
-void le32(std::string& s, std::uint32_t v) {
-  le16(s, v & 0xFFFF);
-  le16(s, v >> 16);
-}
-void le64(std::string& s, std::uint64_t v) {
-  le32(s, static_cast<std::uint32_t>(v & 0xFFFFFFFFu));
-  le32(s, static_cast<std::uint32_t>(v >> 32));
-}
-void f32(std::string& s, float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, 4);
-  le32(s, u);
-}
-void f64(std::string& s, double d) {
-  std::uint64_t u;
-  std::memcpy(&u, &d, 8);
-  le64(s, u);
-}
-
-struct Fmt {
-  std::uint16_t tag = 1;  // 1 PCM, 3 float, 0xFFFE extensible
-  std::uint16_t channels = 1;
-  std::uint32_t rate = 16000;
-  std::uint16_t bits = 16;
-  std::uint16_t subformat = 1;  // for extensible
-};
-
-std::string chunk(const std::string& id, const std::string& body, bool pad = true) {
-  std::string s = id;
-  le32(s, static_cast<std::uint32_t>(body.size()));
-  s += body;
-  if (pad && (body.size() & 1)) s.push_back('\0');
-  return s;
-}
-
-std::string fmt_chunk(const Fmt& f) {
-  std::string b;
-  le16(b, f.tag);
-  le16(b, f.channels);
-  le32(b, f.rate);
-  const std::uint32_t align = f.channels * (f.bits / 8u);
-  le32(b, f.rate * align);
-  le16(b, align);
-  le16(b, f.bits);
-  if (f.tag == 0xFFFE) {
-    le16(b, 22);      // cbSize
-    le16(b, f.bits);  // valid bits
-    le32(b, 0);       // channel mask
-    le16(b, f.subformat);
-    const unsigned char tail[14] = {0x00, 0x00, 0x00, 0x00, 0x10, 0x00, 0x80, 0x00, 0x00, 0xAA, 0x00, 0x38, 0x9B, 0x71};
-    b.append(reinterpret_cast<const char*>(tail), 14);
-  }
-  return chunk("fmt ", b);
-}
-
-// RIFF/WAVE around the given chunks.
-std::string riff(const std::string& chunks) {
-  std::string s = "RIFF";
-  le32(s, static_cast<std::uint32_t>(4 + chunks.size()));
-  return s + "WAVE" + chunks;
-}
-
-std::string wav(const Fmt& f, const std::string& data) { return riff(fmt_chunk(f) + chunk("data", data)); }
-
-// Writes `bytes` to a file in `dir` and reads it back.
-Audio read_bytes(const TempDir& dir, const std::string& name, const std::string& bytes) {
-  const std::string path = dir.file(name);
-  write_text(path, bytes);
-  return gmg::audio::read_wav(path);
-}
-
-// Expects read_wav to throw a gmg::Error whose message names the file and
-// contains every one of `parts`.
-void expect_wav_error(const TempDir& dir, const std::string& name, const std::string& bytes,
-                      const std::vector<std::string>& parts) {
-  const std::string path = dir.file(name);
-  write_text(path, bytes);
-  try {
-    gmg::audio::read_wav(path);
-    ADD_FAILURE() << name << ": expected an error";
-  } catch (const gmg::Error& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(name), std::string::npos) << msg;
-    for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "missing '" << p << "' in: " << msg;
-  }
-}
-
-// ---------------------------------------------------------------------------
-// WAV decoding.
+using namespace gmg::testing::wav;
 
 TEST(Wav, Pcm16Values) {
   TempDir dir;
@@ -377,170 +278,6 @@ TEST(Wav, UnknownAndOddChunksAreSkipped) {
   EXPECT_FLOAT_EQ(a.samples[1], 0.25f);
 }
 
-TEST(Wav, Errors) {
-  TempDir dir;
-  std::string d;
-  le16(d, 1000);
-  le16(d, 2000);
-  expect_wav_error(dir, "empty.wav", "", {"byte 0", "empty"});
-  expect_wav_error(dir, "short.wav", "RIFF", {"byte 4"});
-  expect_wav_error(dir, "text.wav", "hello, this is not audio at all", {"byte 0", "RIFF"});
-  {
-    std::string avi = wav(Fmt{}, d);
-    avi.replace(8, 4, "AVI ");
-    expect_wav_error(dir, "avi.wav", avi, {"byte 8", "WAVE"});
-  }
-  expect_wav_error(dir, "nodata.wav", riff(fmt_chunk(Fmt{}) + chunk("LIST", "abcd")), {"byte", "no 'data' chunk"});
-  expect_wav_error(dir, "nofmt.wav", riff(chunk("data", d)), {"byte", "no 'fmt ' chunk"});
-  {
-    // The data chunk declares 1000 bytes; 4 are present. The data chunk
-    // header is at byte 12 + 24 (RIFF header + fmt chunk).
-    std::string lying = riff(fmt_chunk(Fmt{}) + "data");
-    le32(lying, 1000);
-    lying += d;
-    expect_wav_error(dir, "lying.wav", lying, {"byte 36", "declares 1000 bytes", "only 4"});
-    // A streaming writer's 0xFFFFFFFF must not hang or overflow.
-    std::string stream = riff(fmt_chunk(Fmt{}) + "data");
-    le32(stream, 0xFFFFFFFFu);
-    stream += d;
-    expect_wav_error(dir, "ffff.wav", stream, {"byte 36", "declares 4294967295 bytes"});
-    // Same for an unknown chunk before the data.
-    std::string junk = riff(fmt_chunk(Fmt{}) + "junk");
-    le32(junk, 0xFFFFFFFFu);
-    expect_wav_error(dir, "junk.wav", junk, {"byte 36", "'junk'"});
-  }
-  expect_wav_error(dir, "zero.wav", wav(Fmt{}, ""), {"byte 36", "no samples"});
-  {
-    Fmt f;
-    f.channels = 2;  // one 16-bit sample is half a frame
-    expect_wav_error(dir, "halfframe.wav", wav(f, std::string(2, '\0')), {"no samples"});
-  }
-  {
-    Fmt f;
-    f.tag = 3;
-    f.bits = 32;
-    std::string fd;
-    f32(fd, 0.5f);
-    f32(fd, std::numeric_limits<float>::quiet_NaN());
-    // sample 1 starts at byte 44 + 4
-    expect_wav_error(dir, "nan.wav", wav(f, fd), {"byte 48", "NaN"});
-    fd.clear();
-    f32(fd, std::numeric_limits<float>::infinity());
-    expect_wav_error(dir, "inf.wav", wav(f, fd), {"byte 44", "infinite"});
-    f.bits = 64;
-    fd.clear();
-    f64(fd, std::numeric_limits<double>::quiet_NaN());
-    expect_wav_error(dir, "nan64.wav", wav(f, fd), {"byte 44", "NaN"});
-  }
-  {
-    Fmt f;
-    f.bits = 12;
-    expect_wav_error(dir, "bits12.wav", wav(f, d), {"byte 34", "bit depth 12"});
-    f.tag = 3;
-    f.bits = 16;
-    expect_wav_error(dir, "float16.wav", wav(f, d), {"byte 34", "bit depth 16"});
-    f.tag = 2;  // MS ADPCM
-    expect_wav_error(dir, "adpcm.wav", wav(f, d), {"byte 20", "format tag 0x0002"});
-  }
-  {
-    Fmt f;
-    f.channels = 0;
-    expect_wav_error(dir, "nochan.wav", wav(f, d), {"byte 22", "zero channels"});
-    f.channels = 1;
-    f.rate = 0;
-    expect_wav_error(dir, "norate.wav", wav(f, d), {"byte 24", "zero sample rate"});
-  }
-  {
-    std::string short_fmt = "RIFF";
-    le32(short_fmt, 100);
-    short_fmt += "WAVEfmt ";
-    le32(short_fmt, 16);
-    short_fmt += "abcd";  // fmt body cut short
-    expect_wav_error(dir, "shortfmt.wav", short_fmt, {"byte 12", "'fmt ' chunk declares 16 bytes"});
-  }
-}
-
-TEST(Wav, UnreadableFileUsesTheReaderWording) {
-  TempDir dir;
-  const std::string missing = dir.file("does_not_exist.wav");
-  EXPECT_EQ(error_of([&] { gmg::audio::read_wav(missing); }), missing + ": cannot open (No such file or directory)");
-  const std::string folder = dir.file("folder.wav");
-  std::filesystem::create_directory(folder);
-  EXPECT_EQ(error_of([&] { gmg::audio::read_wav(folder); }), folder + ": is a folder, not a file");
-}
-
-TEST(Wav, WritePcm16RoundTrip) {
-  TempDir dir;
-  Audio a;
-  a.sample_rate = 22050;
-  for (int i = 0; i < 1001; ++i)
-    a.samples.push_back(static_cast<float>(std::lround(10000 * std::sin(i * 0.01))) / 32768.0f);
-  a.samples.push_back(2.0f);   // clipped
-  a.samples.push_back(-2.0f);  // clipped
-  const std::string path = dir.file("out.wav");
-  gmg::audio::write_wav_pcm16(path, a);
-  std::size_t files = 0;  // no temporary file left beside it, whatever its name
-  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
-  EXPECT_EQ(files, 1u);
-  EXPECT_EQ(std::filesystem::file_size(path), 44u + 2u * a.samples.size());
-  Audio b = gmg::audio::read_wav(path);
-  EXPECT_EQ(b.sample_rate, 22050);
-  ASSERT_EQ(b.samples.size(), a.samples.size());
-  for (std::size_t i = 0; i < 1001; ++i) ASSERT_EQ(b.samples[i], a.samples[i]) << i;
-  EXPECT_FLOAT_EQ(b.samples[1001], 32767.0f / 32768.0f);
-  EXPECT_FLOAT_EQ(b.samples[1002], -1.0f);
-}
-
-TEST(Wav, WritePcm16HeaderByHand) {
-  // Two samples at 8000 Hz: RIFF size 36 + 4 data bytes, byte rate 16000, block align 2;
-  // 0.5 -> 16384 (0x4000), -1.0 -> -32768 (0x8000), little-endian.
-  TempDir dir;
-  Audio a;
-  a.sample_rate = 8000;
-  a.samples = {0.5f, -1.0f};
-  gmg::audio::write_wav_pcm16(dir.file("two.wav"), a);
-  const std::string expected = std::string("RIFF") + std::string("\x28\0\0\0", 4) + "WAVEfmt " +
-                               std::string("\x10\0\0\0\x01\0\x01\0\x40\x1f\0\0\x80\x3e\0\0\x02\0\x10\0", 20) + "data" +
-                               std::string("\x04\0\0\0\0\x40\0\x80", 8);
-  std::ifstream in(dir.file("two.wav"), std::ios::binary);
-  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(written, expected);
-}
-
-TEST(Wav, WriteErrorsNameTheFileAndLeaveNothing) {
-  TempDir dir;
-  Audio a;
-  a.sample_rate = 16000;
-  a.samples = {0.1f, 0.2f};
-  Audio no_rate;
-  const std::string bad = dir.file("bad.wav");
-  EXPECT_EQ(error_of([&] { gmg::audio::write_wav_pcm16(bad, no_rate); }),
-            bad + ": cannot write WAV: sample rate 0 is not positive");
-  const std::string nowhere = dir.file("no/such/dir/x.wav");
-  const std::string msg = error_of([&] { gmg::audio::write_wav_pcm16(nowhere, a); });
-  EXPECT_EQ(msg.rfind(nowhere + ": ", 0), 0u) << msg;
-  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
-}
-
-TEST(Wav, ReadWithTargetRateResamples) {
-  TempDir dir;
-  Audio a;
-  a.sample_rate = 16000;
-  a.samples.assign(16000, 0.25f);
-  const std::string path = dir.file("a.wav");
-  gmg::audio::write_wav_pcm16(path, a);
-  Audio b = gmg::audio::read_wav(path, 22050);
-  EXPECT_EQ(b.sample_rate, 22050);
-  EXPECT_EQ(b.samples.size(), 22050u);
-  EXPECT_NEAR(b.samples[11025], 0.25f, 1e-3);
-  Audio c = gmg::audio::read_wav(path, 16000);
-  EXPECT_EQ(c.samples, gmg::audio::read_wav(path).samples);
-  EXPECT_EQ(error_of([&] { gmg::audio::read_wav(path, 0); }), path + ": target sample rate 0 is not positive");
-}
-
-// ---------------------------------------------------------------------------
-// Real files.
-
 TEST(WavRealData, Float32File) {
   GMG_REQUIRE_SHARED_DATA();
   Audio a = gmg::audio::read_wav(gmg::testing::shared_data_dir() + "/beat2_scott/2_scott_0_1_1.wav");
@@ -580,14 +317,6 @@ TEST(Wav, SampleRateFromFourTo192Kilohertz) {
     expect_wav_error(dir, "rate.wav", wav(f, d),
                      {"byte 24", "sample rate " + std::to_string(rate) + " Hz is outside the 4000 to 192000 Hz"});
   }
-}
-
-TEST(Wav, ParseWavNamesTheLabel) {
-  Fmt f;
-  const Audio a = gmg::audio::parse_wav(wav(f, std::string(4, '\0')), "in memory");
-  EXPECT_EQ(a.samples.size(), 2u);
-  EXPECT_EQ(error_of([] { gmg::audio::parse_wav("RIFX", "label.wav"); }),
-            "label.wav: byte 4: file ends after 4 bytes, inside the RIFF header");
 }
 
 TEST(Wav, ResamplerRefusesAFilterBeyondTheLimit) {

@@ -18,6 +18,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/interrupt.h"
 #include "tests/core/helpers.h"
 #include "tests/test_support.h"
 

@@ -1,7 +1,8 @@
-// engine/core/math: the shared constants and angle unwrapping.
+// engine/core/math: the shared constants, angle unwrapping and the moving average.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "engine/core/math.h"
 
@@ -32,6 +33,17 @@ TEST(Math, WrapNearMovesByWholeTurns) {
     previous = wrap_near(wrapped, previous);
     EXPECT_NEAR(previous, line, 1e-12) << i;
   }
+}
+
+// Each value is the mean of its window's samples that exist: the whole window inside, fewer at the
+// ends; half 0 leaves the values as they are.
+TEST(Math, MovingAverageShrinksItsWindowAtTheEnds) {
+  const std::vector<double> x = {1.0, 2.0, 4.0, 8.0, 16.0};
+  EXPECT_EQ(moving_average(x, 1), (std::vector<double>{1.5, 7.0 / 3.0, 14.0 / 3.0, 28.0 / 3.0, 12.0}));
+  EXPECT_EQ(moving_average(x, 2), (std::vector<double>{7.0 / 3.0, 15.0 / 4.0, 31.0 / 5.0, 30.0 / 4.0, 28.0 / 3.0}));
+  EXPECT_EQ(moving_average(x, 0), x);
+  EXPECT_EQ(moving_average(x, 10), std::vector<double>(5, 31.0 / 5.0));
+  EXPECT_TRUE(moving_average({}, 3).empty());
 }
 
 }  // namespace

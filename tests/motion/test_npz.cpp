@@ -19,6 +19,7 @@
 #include "engine/motion/motion_file.h"
 #include "engine/motion/npy.h"
 #include "engine/motion/npz.h"
+#include "engine/motion/zip.h"
 #include "tests/core/helpers.h"
 #include "tests/motion/motion_test_util.h"
 #include "tests/test_support.h"

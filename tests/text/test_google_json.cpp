@@ -115,4 +115,20 @@ TEST(TextJson, MissingFieldsAndBadTimes) {
   EXPECT_CONTAINS(msg, "results");
 }
 
+// The word checks the Google reader shares with the Whisper one (text/json_words.h): the word's
+// text, and its times in order, each error at the word's JSON location.
+TEST(TextJson, WordTextAndOrderAreChecked) {
+  TempDir dir;
+  auto error_for = [&](const std::string& word) {
+    write_text(dir.file("w.json"), R"([{"alternatives": [{"words": [)" + word + "]}]}]");
+    return error_of([&] { tx::read_google_json(dir.file("w.json")); });
+  };
+  const std::string at = dir.file("w.json") + ": [0].alternatives[0].words[0]";
+  EXPECT_EQ(error_for(R"({"start_time": "1s", "end_time": "2s"})"), at + ": missing \"word\"");
+  EXPECT_EQ(error_for(R"({"start_time": "1s", "end_time": "2s", "word": 3})"), at + ".word: expected a string");
+  EXPECT_EQ(error_for(R"({"start_time": "3s", "end_time": "2.5s", "word": " x "})"),
+            at + ": word \"x\" ends (2.5 s) before it starts (3 s)");
+  EXPECT_EQ(error_for("7"), at + ": expected a word object");
+}
+
 }  // namespace
