@@ -24,10 +24,10 @@ std::string seconds(double s) { return format_number(s) + " s"; }
 // a < b: the two stretches [a0, a1) and [b0, b1) share a frame.
 bool overlap(int a0, int a1, int b0, int b1) { return a0 < b1 && b0 < a1; }
 
-// One end of a splice: frames `first`, first + step, ... (`count` of them) of `cur` pulled to
-// `target` at `first` (the base's frame there), the pull decaying as a critically damped spring.
-// `before` is the base's frame preceding `first` in the walking direction (-1: none, no velocity).
-void spring_end(Motion& cur, const Motion& base, int first, int before, int step, int count, double y,
+// One end of a splice: frames `first`, first + step, ... (`count` of them) of `cur` pulled to the
+// base's frame `first`, in pose and in velocity (the step to the next frame, both taken the same
+// way), the pull decaying as a critically damped spring.
+void spring_end(Motion& cur, const Motion& base, int first, int step, int count, double y,
                 const std::vector<char>& mask) {
   const int joints = cur.joint_count();
   const int next = count > 1 ? first + step : -1;
@@ -35,12 +35,12 @@ void spring_end(Motion& cur, const Motion& base, int first, int before, int step
     if (!mask.empty() && !mask[static_cast<std::size_t>(j)]) continue;
     const glm::dquat target = base.rotation(first, j), now = cur.rotation(first, j);
     glm::dvec3 x = quat_to_expmap(target * glm::inverse(now)), v(0.0);
-    if (before >= 0 && next >= 0)
-      v = quat_to_expmap(target * glm::inverse(base.rotation(before, j))) -
+    if (next >= 0)
+      v = quat_to_expmap(base.rotation(next, j) * glm::inverse(target)) -
           quat_to_expmap(cur.rotation(next, j) * glm::inverse(now));
     const glm::dvec3 tt = base.translation(first, j), tn = cur.translation(first, j);
     glm::dvec3 xt = tt - tn, vt(0.0);
-    if (before >= 0 && next >= 0) vt = (tt - base.translation(before, j)) - (cur.translation(next, j) - tn);
+    if (next >= 0) vt = (base.translation(next, j) - tt) - (cur.translation(next, j) - tn);
     for (int i = 0, f = first; i < count; ++i, f += step) {
       const std::size_t k = cur.index(f, j);
       cur.rotations[k] = glm::normalize(expmap_to_quat(x) * cur.rotations[k]);
@@ -169,8 +169,8 @@ void splice_motion(Motion& base, const Motion& insert, int a, int b, double half
         cur.translations[cur.index(f, j)] = insert.translation(f - a, j);
       }
   const double y = spring_damping(halflife);
-  if (a > 0) spring_end(cur, base, a, a - 1, 1, b - a, y, mask);
-  if (b < base.frame_count) spring_end(cur, base, b - 1, b, -1, b - a, y, mask);
+  if (a > 0) spring_end(cur, base, a, 1, b - a, y, mask);
+  if (b < base.frame_count) spring_end(cur, base, b - 1, -1, b - a, y, mask);
   cur.euler_hints.clear();
   base = std::move(cur);
 }

@@ -69,8 +69,9 @@ void resolve_word_pins(std::vector<PinRequest>& pins, const std::vector<double>&
                        const std::string& transcript);
 
 // Puts `insert` (length b - a frames, same skeleton) into `base` at frames [a, b), joined at both
-// ends by springs of `halflife` frames: frame a (when a > 0) continues base's frame a - 1 and frame
-// b - 1 (when b < frame count) leads into base's frame b, each with base's velocity there. Joints
+// ends by springs of `halflife` frames: frame a (when a > 0) and frame b - 1 (when b < frame count)
+// are base's, moving as base moves there, so the output runs on from base's frame a - 1 into the
+// insert and from it into base's frame b. Joints
 // with mask[j] == 0 keep base's values throughout (empty mask: every joint is spliced).
 void splice_motion(Motion& base, const Motion& insert, int a, int b, double halflife, const std::vector<char>& mask);
 
