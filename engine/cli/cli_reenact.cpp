@@ -73,9 +73,11 @@ void run_reenact(const ReenactArgs& a) {
   }
   print_warnings(warnings);
   Motion kept;
+  SmplxBody kept_face;
   if (!a.keep.empty()) {
-    kept = is_npz_path(a.keep) ? npz_read(a.keep, g.motion.skeleton) : motion_read(a.keep);
+    kept = is_npz_path(a.keep) ? npz_read(a.keep, g.motion.skeleton, &kept_face) : motion_read(a.keep);
     control.keep = &kept;
+    control.keep_body = &kept_face;
     control.keep_name = a.keep;
   }
   Reenactment r = reenact(

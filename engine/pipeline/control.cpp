@@ -271,6 +271,40 @@ void apply_keep(Motion& out, const Motion& keep, const std::vector<std::pair<int
   out = std::move(joined);
 }
 
+void apply_keep_face(SmplxBody& face, const SmplxBody& keep, const std::vector<std::pair<int, int>>& frames,
+                     double halflife) {
+  const int dims = keep.expression_dims;
+  if (!face.has_face() || !keep.has_face() || face.expression_dims != dims ||
+      face.expressions.size() != keep.expressions.size())
+    return;
+  const int n = static_cast<int>(keep.expressions.size() / static_cast<std::size_t>(dims));
+  std::vector<double> out = keep.expressions;
+  const double y = spring_damping(halflife);
+  auto at = [&](const std::vector<double>& v, int f, int d) { return v[static_cast<std::size_t>(f * dims + d)]; };
+  for (const auto& [a, b] : frames)
+    for (int d = 0; d < dims; ++d) {
+      std::vector<double> fresh(static_cast<std::size_t>(b - a));
+      for (int f = a; f < b; ++f) fresh[static_cast<std::size_t>(f - a)] = at(face.expressions, f, d);
+      // The two ends' offsets, as splice_motion's springs (one axis of a glm::dvec3 carries them).
+      for (int end = 0; end < 2; ++end) {
+        const bool start = end == 0;
+        if (start ? a == 0 : b == n) continue;
+        const int first = start ? a : b - 1, step = start ? 1 : -1, next = first + step;
+        const double now = fresh[static_cast<std::size_t>(first - a)];
+        glm::dvec3 x(at(keep.expressions, first, d) - now, 0, 0), v(0.0);
+        if (b - a > 1)
+          v.x = (at(keep.expressions, next, d) - at(keep.expressions, first, d)) -
+                (fresh[static_cast<std::size_t>(next - a)] - now);
+        for (int i = 0, f = first; i < b - a; ++i, f += step) {
+          fresh[static_cast<std::size_t>(f - a)] += x.x;
+          spring_decay(x, v, y, 1.0);
+        }
+      }
+      for (int f = a; f < b; ++f) out[static_cast<std::size_t>(f * dims + d)] = fresh[static_cast<std::size_t>(f - a)];
+    }
+  face.expressions = std::move(out);
+}
+
 void control_report(nlohmann::ordered_json& report, const std::vector<std::pair<int, int>>& planned, int total_frames,
                     bool keeping, const std::vector<Anchor>& pins) {
   if (!keeping && pins.empty()) return;

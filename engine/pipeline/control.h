@@ -18,6 +18,7 @@
 
 #include "engine/motion/body_layers.h"
 #include "engine/motion/motion.h"
+#include "engine/motion/npz.h"
 #include "graph/motion_graph.h"
 #include "search/anchors.h"
 
@@ -41,8 +42,17 @@ using TimeRange = std::pair<double, double>;
 struct Control {
   std::vector<PinRequest> pins;
   const Motion* keep = nullptr;  // the earlier output (in the graph's skeleton, the reference's up axis)
-  std::string keep_name;         // its file, for errors
+  const SmplxBody* keep_body = nullptr;  // its face, when it has one (an .npz): kept like the motion
+  std::string keep_name;                 // its file, for errors
   std::vector<TimeRange> ranges;
+};
+
+// The same in output frames, checked: what reenact_events takes.
+struct ControlFrames {
+  std::vector<Anchor> pins;                 // pin_anchors
+  const Motion* keep = nullptr;             // may be null: nothing kept
+  const SmplxBody* keep_body = nullptr;     // may be null
+  std::vector<std::pair<int, int>> ranges;  // range_frames
 };
 
 // Parses "T=FROM:TO" or "T=CLIP@FROM:TO" (and for --pin-word "N=FROM:TO", word = N). Throws
@@ -95,6 +105,12 @@ void check_keep(const Control& control, const MotionGraph& g, int total_frames);
 // frames.
 void apply_keep(Motion& out, const Motion& keep, const std::vector<std::pair<int, int>>& frames, const MotionGraph& g,
                 const BodyLayers& layers, double spine_follow, double halflife);
+
+// The face of the earlier output kept outside `frames` as apply_keep keeps its motion: `face` (the
+// new reenactment's) takes keep's expressions outside them and inside them is joined to keep's at
+// both ends by springs of `halflife` frames. Nothing when either has no face or their sizes differ.
+void apply_keep_face(SmplxBody& face, const SmplxBody& keep, const std::vector<std::pair<int, int>>& frames,
+                     double halflife);
 
 // The report's "control": {kept: [[first, last), ...], planned: [...], pinned: [{start_frame,
 // frames, graph_frame}]} in output frames, and each subsequence of report["subsequences"] marked

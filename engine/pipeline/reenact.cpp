@@ -38,8 +38,8 @@ void reenactment_use_betas(Reenactment& r, std::vector<double> betas, const std:
 }
 
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config,
-                           const std::vector<Anchor>& pins, const Motion* keep,
-                           const std::vector<std::pair<int, int>>& keep_frames) {
+                           const ControlFrames& control) {
+  const std::vector<Anchor>& pins = control.pins;
   config_validate(config);
   std::mt19937_64 rng(config.seed);
   const std::vector<Subsequence> subs = segment_speech(events.total_frames, events.onset_frames, events.keyword_frames);
@@ -60,9 +60,11 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   // A pin plays the reference's stretch, joined within 0.2 s of its ends.
   if (!pins.empty()) apply_pins(r.motion, g, pins, static_cast<int>(std::lround(kPinSettleS * g.motion.fps)));
   motion_from_y_up(r.motion, g.up);  // the output in the reference's own up axis
-  if (keep)
-    apply_keep(r.motion, *keep, keep_frames, g, lower.layers, blend.spine_follow, blend.halflife_s * g.motion.fps);
+  if (control.keep)
+    apply_keep(r.motion, *control.keep, control.ranges, g, lower.layers, blend.spine_follow,
+               blend.halflife_s * g.motion.fps);
   r.body = assemble_body(g, r.plan, assembly_params(config));
+  if (control.keep_body) apply_keep_face(r.body, *control.keep_body, control.ranges, blend.halflife_s * g.motion.fps);
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
   r.report =
@@ -71,7 +73,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
     r.report["body"] = std::move(body);
   if (nlohmann::ordered_json legs = lower_body_report(g.motion.skeleton, lower); !legs.is_null())
     r.report["lower_body"] = std::move(legs);
-  control_report(r.report, keep_frames, events.total_frames, keep != nullptr, pins);
+  control_report(r.report, control.ranges, events.total_frames, control.keep != nullptr, pins);
   r.warnings = events.warnings;
   return r;
 }
@@ -108,16 +110,17 @@ Reenactment reenact_controlled(const MotionGraph& g, const SpeechEvents& events,
   std::vector<PinRequest> pins = control.pins;
   std::sort(word_starts.begin(), word_starts.end());
   resolve_word_pins(pins, word_starts, transcript.empty() ? speech : transcript);
-  const std::vector<Anchor> anchors = pin_anchors(g, pins, events.total_frames, speech, graph_name);
-  std::vector<std::pair<int, int>> frames;
+  ControlFrames frames;
+  frames.pins = pin_anchors(g, pins, events.total_frames, speech, graph_name);
   if (control.keep) {
     check_keep(control, g, events.total_frames);
-    frames = range_frames(control.ranges, g.motion.fps, events.total_frames, control.keep_name);
+    frames.keep = control.keep;
+    frames.keep_body = control.keep_body;
+    frames.ranges = range_frames(control.ranges, g.motion.fps, events.total_frames, control.keep_name);
   } else if (!control.ranges.empty()) {
     throw Error(speech + ": --range needs --keep, the earlier output whose other frames it keeps");
   }
-  return naming_memory_errors(speech, "reenacting",
-                              [&] { return reenact_events(g, events, config, anchors, control.keep, frames); });
+  return naming_memory_errors(speech, "reenacting", [&] { return reenact_events(g, events, config, frames); });
 }
 
 bool pins_by_word(const Control& control) {

@@ -55,11 +55,10 @@ Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const
                           const Config& config, const std::string& name, const std::string& graph_name,
                           const Control& control = {});
 
-// Same, from events already analysed. `pins` from pin_anchors; `keep` (may be null) the earlier
-// output, checked (check_keep), kept outside `keep_frames` (range_frames).
+// Same, from events already analysed, with the control's pins and kept output already checked
+// (engine/pipeline/control.h).
 Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config,
-                           const std::vector<Anchor>& pins = {}, const Motion* keep = nullptr,
-                           const std::vector<std::pair<int, int>>& keep_frames = {});
+                           const ControlFrames& control = {});
 
 // Gives the reenactment `betas` (e.g. read_betas_file of an .npz with `betas`, or an .npy) in
 // place of the graph's, and says in its report that they come from `from`.

@@ -149,7 +149,7 @@ PyGraph graph_arg(const py::object& graph) {
 // gmg.Reenactment, a gmg.Motion or a path (.bvh, or .npz in the graph's skeleton), read into `kept`;
 // pins (at, from, to) or (at, clip, from, to) in seconds.
 Control control_of(const py::object& keep, const py::object& ranges, const py::object& pins, const MotionGraph& g,
-                   Motion& kept) {
+                   Motion& kept, SmplxBody& kept_face) {
   Control c;
   for (const py::handle& p : pins) {
     const py::tuple t = py::reinterpret_borrow<py::object>(p).cast<py::tuple>();
@@ -172,16 +172,19 @@ Control control_of(const py::object& keep, const py::object& ranges, const py::o
   if (keep.is_none()) return c;
   if (py::isinstance<PyReenactment>(keep)) {
     kept = keep.cast<const PyReenactment&>().motion.motion;
+    kept_face = keep.cast<const PyReenactment&>().motion.body;
     c.keep_name = "keep";
   } else if (py::isinstance<PyMotion>(keep)) {
     kept = keep.cast<const PyMotion&>().motion;
+    kept_face = keep.cast<const PyMotion&>().body;
     c.keep_name = "keep";
   } else {
     c.keep_name = path_of(keep);
     const py::gil_scoped_release release;
-    kept = is_npz_path(c.keep_name) ? npz_read(c.keep_name, g.motion.skeleton) : motion_read(c.keep_name);
+    kept = is_npz_path(c.keep_name) ? npz_read(c.keep_name, g.motion.skeleton, &kept_face) : motion_read(c.keep_name);
   }
   c.keep = &kept;
+  c.keep_body = &kept_face;
   return c;
 }
 
@@ -195,7 +198,8 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
   const PyGraph g = graph_arg(graph);
   const Config cfg = config_of(config, set, seed);
   Motion kept;
-  const Control control = control_of(keep, ranges, pins, *g.graph, kept);
+  SmplxBody kept_face;
+  const Control control = control_of(keep, ranges, pins, *g.graph, kept, kept_face);
   const text::TranscriptFormat format = text::parse_transcript_format(transcript_format);
   // Read first, as `gmg reenact --betas` does: a bad file stops before the long work.
   std::vector<double> shape;
