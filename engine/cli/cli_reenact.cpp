@@ -115,8 +115,10 @@ void add_reenact_command(CLI::App& app) {
                   "motion to write: .bvh, or .npz (SMPL-X as BEAT2 ships it, with the reference's shape and face)")
       ->required();
   cmd->add_option("--report", a->report, "JSON report to write (.json)");
-  cmd->add_option("--keep", a->keep, "an earlier output (.bvh or .npz) for this audio: keep every frame outside --range");
-  cmd->add_option("--range", a->ranges, "FROM:TO seconds of --keep to plan afresh (repeatable)")->allow_extra_args(false);
+  cmd->add_option("--keep", a->keep,
+                  "an earlier output (.bvh or .npz) for this audio: keep every frame outside --range");
+  cmd->add_option("--range", a->ranges, "FROM:TO seconds of --keep to plan afresh (repeatable)")
+      ->allow_extra_args(false);
   cmd->add_option("--pin", a->pins,
                   "T=FROM:TO: at T s play the reference from FROM to TO s (graph timeline), or T=CLIP@FROM:TO "
                   "(repeatable)")

@@ -107,7 +107,8 @@ std::vector<Anchor> pin_anchors(const MotionGraph& g, const std::vector<PinReque
     int first = 0, count = g.frame_count();
     if (!p.clip.empty()) {
       const auto c = std::find(names.begin(), names.end(), p.clip);
-      if (c == names.end()) throw Error(graph_name + ": " + what + " names no clip of the graph" + did_you_mean(p.clip, names));
+      if (c == names.end())
+        throw Error(graph_name + ": " + what + " names no clip of the graph" + did_you_mean(p.clip, names));
       first = g.clips[static_cast<std::size_t>(c - names.begin())].first_frame;
       count = g.clips[static_cast<std::size_t>(c - names.begin())].frame_count;
     }
@@ -203,8 +204,8 @@ std::vector<std::pair<int, int>> range_frames(const std::vector<TimeRange>& rang
   std::vector<std::pair<int, int>> out;
   for (const TimeRange& r : ranges) {
     const int a = static_cast<int>(std::lround(r.first * fps)), b = static_cast<int>(std::lround(r.second * fps));
-    if (b <= a) throw Error(name + ": the range " + format_number(r.first) + ":" + format_number(r.second) +
-                            " holds no frame");
+    if (b <= a)
+      throw Error(name + ": the range " + format_number(r.first) + ":" + format_number(r.second) + " holds no frame");
     if (b > total_frames)
       throw Error(name + ": the range " + format_number(r.first) + ":" + format_number(r.second) +
                   " ends after the output (" + seconds(total_frames / fps) + ")");
@@ -262,7 +263,8 @@ void apply_keep(Motion& out, const Motion& keep, const std::vector<std::pair<int
       const std::size_t k = joined.index(f, j);
       previous[static_cast<std::size_t>(j)] =
           inside[static_cast<std::size_t>(f)]
-              ? quat_to_euler_near(joined.rotations[k], keep.skeleton.joints[static_cast<std::size_t>(j)].rotation_order,
+              ? quat_to_euler_near(joined.rotations[k],
+                                   keep.skeleton.joints[static_cast<std::size_t>(j)].rotation_order,
                                    previous[static_cast<std::size_t>(j)])
               : keep.euler_hints[k];
       joined.euler_hints[k] = previous[static_cast<std::size_t>(j)];
@@ -318,7 +320,8 @@ void control_report(nlohmann::ordered_json& report, const std::vector<std::pair<
     at = b;
   }
   if (at < total_frames && keeping) kept.push_back({at, total_frames});
-  for (const Anchor& p : pins) pinned.push_back({{"start_frame", p.start}, {"frames", p.length}, {"graph_frame", p.source}});
+  for (const Anchor& p : pins)
+    pinned.push_back({{"start_frame", p.start}, {"frames", p.length}, {"graph_frame", p.source}});
   report["control"] = {{"kept", kept}, {"planned", plan}, {"pinned", pinned}};
   if (!report.contains("subsequences")) return;
   for (auto& s : report["subsequences"]) {

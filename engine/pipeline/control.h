@@ -41,7 +41,7 @@ using TimeRange = std::pair<double, double>;
 // What the user fixes: pins, and an earlier output to keep outside `ranges`.
 struct Control {
   std::vector<PinRequest> pins;
-  const Motion* keep = nullptr;  // the earlier output (in the graph's skeleton, the reference's up axis)
+  const Motion* keep = nullptr;          // the earlier output (in the graph's skeleton, the reference's up axis)
   const SmplxBody* keep_body = nullptr;  // its face, when it has one (an .npz): kept like the motion
   std::string keep_name;                 // its file, for errors
   std::vector<TimeRange> ranges;

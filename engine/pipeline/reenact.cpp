@@ -117,6 +117,15 @@ Reenactment reenact_controlled(const MotionGraph& g, const SpeechEvents& events,
     frames.keep = control.keep;
     frames.keep_body = control.keep_body;
     frames.ranges = range_frames(control.ranges, g.motion.fps, events.total_frames, control.keep_name);
+    // A pin among the kept frames would be overwritten by them.
+    for (const Anchor& p : frames.pins) {
+      const bool inside = std::any_of(frames.ranges.begin(), frames.ranges.end(), [&](const std::pair<int, int>& r) {
+        return p.start >= r.first && p.start + p.length <= r.second;
+      });
+      if (!inside)
+        throw Error(control.keep_name + ": the pin at " + format_number(p.start / g.motion.fps) +
+                    " s is not inside a --range (the frames outside them are kept as they are)");
+    }
   } else if (!control.ranges.empty()) {
     throw Error(speech + ": --range needs --keep, the earlier output whose other frames it keeps");
   }
@@ -139,11 +148,13 @@ Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Confi
   if (pins_by_word(control) && !speech.transcript.empty())
     for (const text::Word& w : text::read_transcript(speech.transcript, speech.transcript_format, speech.tier))
       word_starts.push_back(w.start);
-  Reenactment r = reenact_controlled(g, events, config, control, word_starts, speech.audio, speech.transcript, graph_name);
-  nlohmann::ordered_json inputs = {{"graph", graph_name},
-                                   {"audio", speech.audio},
-                                   {"transcript", speech.transcript.empty() ? nlohmann::ordered_json(nullptr)
-                                                                            : nlohmann::ordered_json(speech.transcript)}};
+  Reenactment r =
+      reenact_controlled(g, events, config, control, word_starts, speech.audio, speech.transcript, graph_name);
+  nlohmann::ordered_json inputs = {
+      {"graph", graph_name},
+      {"audio", speech.audio},
+      {"transcript",
+       speech.transcript.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(speech.transcript)}};
   if (control.keep) inputs["keep"] = control.keep_name;
   prepend_inputs(r, std::move(inputs));
   return r;

@@ -38,8 +38,8 @@ void control_facts(const nlohmann::json& c, double fps, const std::string& path,
   f.kept_s = stretches_s(c["kept"], fps, path);
   f.planned_s = stretches_s(c["planned"], fps, path);
   for (const nlohmann::json& p : c["pinned"]) {
-    if (!p.is_object() || !p.contains("start_frame") || !p.contains("frames") || !p["start_frame"].is_number_integer() ||
-        !p["frames"].is_number_integer())
+    if (!p.is_object() || !p.contains("start_frame") || !p.contains("frames") ||
+        !p["start_frame"].is_number_integer() || !p["frames"].is_number_integer())
       throw Error(path + ": a pin of its control lacks start_frame or frames");
     const double start = p["start_frame"].get<double>();
     f.pinned_s.emplace_back(start / fps, (start + p["frames"].get<double>()) / fps);

@@ -165,7 +165,8 @@ Control control_of(const py::object& keep, const py::object& ranges, const py::o
   }
   for (const py::handle& r : ranges) {
     const auto range = r.cast<std::pair<double, double>>();
-    if (range.first < 0 || !(range.second > range.first)) throw Error("ranges: expected (from, to) with 0 <= from < to");
+    if (range.first < 0 || !(range.second > range.first))
+      throw Error("ranges: expected (from, to) with 0 <= from < to");
     c.ranges.push_back(range);
   }
   if (keep.is_none() != c.ranges.empty()) throw Error("reenact: keep= and ranges= go together");
@@ -193,8 +194,8 @@ Control control_of(const py::object& keep, const py::object& ranges, const py::o
 PyReenactment reenact(const py::object& graph, const py::object& audio, const py::object& transcript,
                       const py::object& sample_rate, const py::object& words, const std::string& transcript_format,
                       const py::object& tier, const py::object& seed, const py::object& config, const py::object& set,
-                      const py::object& betas, const py::object& name, const py::object& keep,
-                      const py::object& ranges, const py::object& pins) {
+                      const py::object& betas, const py::object& name, const py::object& keep, const py::object& ranges,
+                      const py::object& pins) {
   const PyGraph g = graph_arg(graph);
   const Config cfg = config_of(config, set, seed);
   Motion kept;

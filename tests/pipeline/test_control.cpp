@@ -16,9 +16,9 @@
 #include "engine/pipeline/control.h"
 #include "engine/synth/synth.h"
 #include "graph/graph_io.h"
-#include "text/transcript.h"
 #include "tests/cli/cli_run.h"
 #include "tests/test_support.h"
+#include "text/transcript.h"
 
 namespace gmg {
 namespace {
@@ -46,7 +46,8 @@ double largest_heading_gap(const Motion& m, int m0, const Motion& r, int r0, int
   for (int i = 0; i < n; ++i) {
     const glm::dquat hm = glm::inverse(heading_of(m.rotation(m0 + i, 0))),
                      hr = glm::inverse(heading_of(r.rotation(r0 + i, 0)));
-    const glm::dvec3 rootm(pm(m0 + i, 0), pm(m0 + i, 1), pm(m0 + i, 2)), rootr(pr(r0 + i, 0), pr(r0 + i, 1), pr(r0 + i, 2));
+    const glm::dvec3 rootm(pm(m0 + i, 0), pm(m0 + i, 1), pm(m0 + i, 2)),
+        rootr(pr(r0 + i, 0), pr(r0 + i, 1), pr(r0 + i, 2));
     for (int j = 1; j < m.joint_count(); ++j) {
       const glm::dvec3 a = hm * (glm::dvec3(pm(m0 + i, 3 * j), pm(m0 + i, 3 * j + 1), pm(m0 + i, 3 * j + 2)) - rootm);
       const glm::dvec3 b = hr * (glm::dvec3(pr(r0 + i, 3 * j), pr(r0 + i, 3 * j + 1), pr(r0 + i, 3 * j + 2)) - rootr);
@@ -80,8 +81,8 @@ class Control : public ::testing::Test {
   }
   static std::string file(const std::string& name) { return dir_->file(name); }
   static CliRun reenact(std::vector<std::string> more) {
-    std::vector<std::string> args = {"reenact", "--graph", file("ref.gmg"), "--audio", file("test.wav"),
-                                     "--transcript", file("test.tsv")};
+    std::vector<std::string> args = {"reenact",        "--graph",      file("ref.gmg"), "--audio",
+                                     file("test.wav"), "--transcript", file("test.tsv")};
     args.insert(args.end(), more.begin(), more.end());
     return run_gmg(args);
   }
@@ -133,6 +134,21 @@ TEST_F(Control, TheSameSeedPlansTheRangeAsBefore) {
   EXPECT_LT(worst, 1e-5);
 }
 
+TEST_F(Control, APinInsideARangeIsPlayedAndTheRestKept) {
+  const MotionGraph g = graph_load(file("ref.gmg"));
+  ASSERT_EQ(
+      reenact({"--keep", file("a.bvh"), "--range", "2:8", "--pin", "4=10:12", "--seed", "2", "-o", file("kp.bvh")})
+          .code,
+      0);
+  const std::vector<std::string> a = frame_lines(file("a.bvh")), kp = frame_lines(file("kp.bvh"));
+  ASSERT_EQ(a.size(), kp.size());
+  for (std::size_t f = 0; f < a.size(); ++f)
+    if (f < 60 || f >= 240) {
+      EXPECT_EQ(a[f], kp[f]) << f;
+    }
+  EXPECT_LT(largest_heading_gap(bvh_read(file("kp.bvh")), 126, g.motion, 306, 48), 1.0);
+}
+
 // The pinned stretch plays the reference's body (root-relative, in the root's heading) within 1 cm
 // from 0.2 s after its start to 0.2 s before its end; pins at the very start and end too.
 TEST_F(Control, PinsPlayTheReferenceStretch) {
@@ -141,7 +157,8 @@ TEST_F(Control, PinsPlayTheReferenceStretch) {
     std::string pin;
     int at, from, frames;
   };
-  for (const Case& c : {Case{"6=10:12", 180, 300, 60}, Case{"0=20:21.5", 0, 600, 45}, Case{"13.5=30:31.5", 405, 900, 45}}) {
+  for (const Case& c :
+       {Case{"6=10:12", 180, 300, 60}, Case{"0=20:21.5", 0, 600, 45}, Case{"13.5=30:31.5", 405, 900, 45}}) {
     SCOPED_TRACE(c.pin);
     const CliRun r = reenact({"--pin", c.pin, "--seed", "3", "-o", file("p.bvh"), "--report", file("p.json")});
     ASSERT_EQ(r.code, 0) << r.err;
@@ -196,6 +213,7 @@ TEST_F(Control, RefusalsNameTheProblemAndWriteNothing) {
       {{"--keep", file("a.bvh"), "--range", "14:16"}, 1, "ends after the output"},
       {{"--keep", file("a.bvh")}, 2, "--keep and --range go together"},
       {{"--range", "2:3"}, 2, "--keep and --range go together"},
+      {{"--keep", file("a.bvh"), "--range", "2:5", "--pin", "4=10:12"}, 1, "is not inside a --range"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args = c.args;
@@ -220,7 +238,8 @@ TEST(ControlSplice, ContinuesTheBaseAtBothEndsAndPlaysTheInsertBetween) {
     for (int j = 0; j < s.joint_count(); ++j)
       EXPECT_NEAR(rotation_angle_between(base.rotation(f, j), before.rotation(f, j)), 0.0, 1e-12) << f;
   // Settled after 4.79 half-lives (under 1 % of the 0.5 rad offset) and up to as long before the end.
-  for (int f = 30; f < 70; ++f) EXPECT_LT(rotation_angle_between(base.rotation(f, 3), insert.rotation(f - 20, 3)), 0.005) << f;
+  for (int f = 30; f < 70; ++f)
+    EXPECT_LT(rotation_angle_between(base.rotation(f, 3), insert.rotation(f - 20, 3)), 0.005) << f;
 }
 
 TEST(ControlParse, PinsAndRanges) {
