@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/motion/motion_file.h"
+#include "engine/motion/npz.h"
 #include "engine/pipeline/pipeline.h"
 #include "graph/graph_io.h"
 #include "graph/stats.h"
@@ -17,7 +18,8 @@ namespace {
 
 struct ReenactArgs {
   std::string graph, audio, transcript, output, report, format = "auto";
-  std::string ref_motion, ref_audio, ref_transcript, skeleton, tier, betas;
+  std::string ref_motion, ref_audio, ref_transcript, skeleton, tier, betas, keep;
+  std::vector<std::string> ranges, pins, word_pins;
   ConfigOptions config;
   bool allow_silence = false;
 };
@@ -35,10 +37,23 @@ void run_reenact(const ReenactArgs& a) {
                                    {"--audio", a.audio},
                                    {"--transcript", transcript_or_none(a.transcript)},
                                    {"--skeleton", a.skeleton},
-                                   {"--betas", a.betas}};
+                                   {"--betas", a.betas},
+                                   {"--keep", a.keep}};
   for (const NamedFile& f : config_input_files(a.config, cfg)) inputs.push_back(f);
   check_outputs_apart({{"-o", a.output}, {"--report", a.report}}, inputs);
   check_outputs({{"-o", a.output, kMotionWriteExtensions}, {"--report", a.report, kJsonExtensions}});
+  Control control;
+  try {  // a malformed value is a usage error, as CLI11's own
+    for (const std::string& p : a.pins) control.pins.push_back(parse_pin(p, "--pin", false));
+    for (const std::string& p : a.word_pins) control.pins.push_back(parse_pin(p, "--pin-word", true));
+    for (const std::string& r : a.ranges) control.ranges.push_back(parse_range(r, "--range"));
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  if (a.keep.empty() != control.ranges.empty()) throw UsageError("reenact: --keep and --range go together");
+  if (!a.word_pins.empty() && a.transcript.empty()) throw UsageError("reenact: --pin-word needs --transcript");
   // Read first: a bad file stops the command before the long work.
   const std::vector<double> betas = a.betas.empty() ? std::vector<double>() : read_betas_file(a.betas);
   OutputTransaction outputs;  // the BVH and the report, both or neither
@@ -58,9 +73,17 @@ void run_reenact(const ReenactArgs& a) {
     graph_name = a.ref_motion;
   }
   print_warnings(warnings);
+  Motion kept;
+  SmplxBody kept_face;
+  if (!a.keep.empty()) {
+    kept = is_npz_path(a.keep) ? npz_read(a.keep, g.motion.skeleton, &kept_face) : motion_read(a.keep);
+    control.keep = &kept;
+    control.keep_body = &kept_face;
+    control.keep_name = a.keep;
+  }
   Reenactment r = reenact(
       g, {a.audio, transcript_or_none(a.transcript), text::parse_transcript_format(a.format), a.tier, a.allow_silence},
-      cfg, graph_name);
+      cfg, graph_name, control);
   print_warnings(r.warnings);
   if (!a.betas.empty()) reenactment_use_betas(r, betas, a.betas);
   motion_write(a.output, r.motion, r.body);
@@ -94,6 +117,17 @@ void add_reenact_command(CLI::App& app) {
                   "motion to write: .bvh, or .npz (SMPL-X as BEAT2 ships it, with the reference's shape and face)")
       ->required();
   cmd->add_option("--report", a->report, "JSON report to write (.json)");
+  cmd->add_option("--keep", a->keep,
+                  "an earlier output (.bvh or .npz) for this audio: keep every frame outside --range");
+  cmd->add_option("--range", a->ranges, "FROM:TO seconds of --keep to plan afresh (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--pin", a->pins,
+                  "T=FROM:TO: at T s play the reference from FROM to TO s (graph timeline), or T=CLIP@FROM:TO "
+                  "(repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--pin-word", a->word_pins,
+                  "N=FROM:TO: the same where the transcript's word N (from 0) starts (repeatable)")
+      ->allow_extra_args(false);
   add_allow_silence_flag(cmd, a->allow_silence);
   a->config.add(cmd, true);
   cmd->callback([a] { run_reenact(*a); });

@@ -11,6 +11,7 @@
 #include "engine/config/config.h"
 #include "engine/motion/motion.h"
 #include "engine/pipeline/assembly.h"
+#include "engine/pipeline/control.h"
 #include "engine/pipeline/speech_analysis.h"
 #include "graph/motion_graph.h"
 #include "search/planner.h"
@@ -42,19 +43,23 @@ void check_output_size(int frames, const Skeleton& skeleton, const std::string& 
 
 // Reenacts the speech: segmentation, planning, resampling, blending. Deterministic for a given
 // graph, speech, config (including config.seed). `graph_name` labels the report and the errors
-// of check_lock_joints_of_graph, which runs first.
+// of check_lock_joints_of_graph, which runs first. `control` (engine/pipeline/control.h): its pins
+// (by word: of speech.transcript) and the earlier output it keeps, checked after the speech
+// analysis and before any search, each refusal naming its file.
 Reenactment reenact(const MotionGraph& g, const SpeechFiles& speech, const Config& config,
-                    const std::string& graph_name);
+                    const std::string& graph_name, const Control& control = {});
 
 // Same, from speech in memory (words may be null: no transcript; checked with
 // check_audio_samples and check_words, and refused as a file is when it cannot be speech unless
 // allow_silence). `name` labels errors and the report's audio.
 Reenactment reenact_audio(const MotionGraph& g, const audio::Audio& sound, const std::vector<text::Word>* words,
                           const Config& config, const std::string& name, const std::string& graph_name,
-                          bool allow_silence = false);
+                          bool allow_silence = false, const Control& control = {});
 
-// Same, from events already analysed.
-Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config);
+// Same, from events already analysed, with the control's pins and kept output already checked
+// (engine/pipeline/control.h).
+Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, const Config& config,
+                           const ControlFrames& control = {});
 
 // Gives the reenactment `betas` (e.g. read_betas_file of an .npz with `betas`, or an .npy) in
 // place of the graph's, and says in its report that they come from `from`.

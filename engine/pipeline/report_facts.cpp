@@ -18,6 +18,34 @@ std::vector<int> path_frames(const nlohmann::json& s, const std::string& path) {
   return frames;
 }
 
+// [[first, last), ...] output frames as seconds.
+std::vector<std::pair<double, double>> stretches_s(const nlohmann::json& list, double fps, const std::string& path) {
+  std::vector<std::pair<double, double>> out;
+  if (!list.is_array()) throw Error(path + ": the control's stretches are not a list");
+  for (const nlohmann::json& r : list) {
+    if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer() ||
+        r[1].get<long>() < r[0].get<long>())
+      throw Error(path + ": a control stretch is not [first, last)");
+    out.emplace_back(r[0].get<double>() / fps, r[1].get<double>() / fps);
+  }
+  return out;
+}
+
+void control_facts(const nlohmann::json& c, double fps, const std::string& path, ReportFacts& f) {
+  if (!c.is_object() || !c.contains("kept") || !c.contains("planned") || !c.contains("pinned") ||
+      !c["pinned"].is_array())
+    throw Error(path + ": its control lacks kept, planned or pinned");
+  f.kept_s = stretches_s(c["kept"], fps, path);
+  f.planned_s = stretches_s(c["planned"], fps, path);
+  for (const nlohmann::json& p : c["pinned"]) {
+    if (!p.is_object() || !p.contains("start_frame") || !p.contains("frames") ||
+        !p["start_frame"].is_number_integer() || !p["frames"].is_number_integer())
+      throw Error(path + ": a pin of its control lacks start_frame or frames");
+    const double start = p["start_frame"].get<double>();
+    f.pinned_s.emplace_back(start / fps, (start + p["frames"].get<double>()) / fps);
+  }
+}
+
 }  // namespace
 
 ReportFacts read_report_facts(const std::string& path, double fps) {
@@ -50,6 +78,7 @@ ReportFacts report_facts_of(const nlohmann::json& rep, double fps, const std::st
     if (!frames.empty()) previous = frames.back();
     f.source_frames.insert(f.source_frames.end(), frames.begin(), frames.end());
   }
+  if (rep.contains("control")) control_facts(rep["control"], fps, path, f);
   return f;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +17,9 @@ struct ReportFacts {
   int frames = -1;                  // its "frames" (the output's frame count); -1 when absent
   std::vector<int> source_frames;   // graph frames in output order
   std::vector<double> junctions_s;  // output times (s) where the source jumps
+  // The report's "control" (engine/pipeline/control.h) as [from, to) output times (s): the
+  // stretches kept from an earlier output, planned afresh, and pinned; empty without one.
+  std::vector<std::pair<double, double>> kept_s, planned_s, pinned_s;
 };
 
 // Reads the report at `path`; junction times are in seconds at the output's `fps`. A junction is

@@ -164,15 +164,63 @@ PyGraph graph_arg(const py::object& graph) {
   throw Error("graph: expected a gmg.Graph or the path of a graph file");
 }
 
+// gmg.reenact's keep=, ranges= and pins= as `gmg reenact --keep --range --pin`: keep a
+// gmg.Reenactment, a gmg.Motion or a path (.bvh, or .npz in the graph's skeleton), read into `kept`;
+// pins (at, from, to) or (at, clip, from, to) in seconds.
+Control control_of(const py::object& keep, const py::object& ranges, const py::object& pins, const MotionGraph& g,
+                   Motion& kept, SmplxBody& kept_face) {
+  Control c;
+  for (const py::handle& p : pins) {
+    const py::tuple t = py::reinterpret_borrow<py::object>(p).cast<py::tuple>();
+    if (t.size() != 3 && t.size() != 4) throw Error("pins: expected (at, from, to) or (at, clip, from, to) tuples");
+    PinRequest pin;
+    pin.at = t[0].cast<double>();
+    if (t.size() == 4) pin.clip = t[1].cast<std::string>();
+    pin.from = t[t.size() - 2].cast<double>();
+    pin.to = t[t.size() - 1].cast<double>();
+    if (pin.at < 0 || pin.from < 0 || !(pin.to > pin.from))
+      throw Error("pins: times must be 0 or more, with from before to");
+    c.pins.push_back(pin);
+  }
+  for (const py::handle& r : ranges) {
+    const auto range = r.cast<std::pair<double, double>>();
+    if (range.first < 0 || !(range.second > range.first))
+      throw Error("ranges: expected (from, to) with 0 <= from < to");
+    c.ranges.push_back(range);
+  }
+  if (keep.is_none() != c.ranges.empty()) throw Error("reenact: keep= and ranges= go together");
+  if (keep.is_none()) return c;
+  if (py::isinstance<PyReenactment>(keep)) {
+    kept = keep.cast<const PyReenactment&>().motion.motion;
+    kept_face = keep.cast<const PyReenactment&>().motion.body;
+    c.keep_name = "keep";
+  } else if (py::isinstance<PyMotion>(keep)) {
+    kept = keep.cast<const PyMotion&>().motion;
+    kept_face = keep.cast<const PyMotion&>().body;
+    c.keep_name = "keep";
+  } else {
+    c.keep_name = path_of(keep);
+    const py::gil_scoped_release release;
+    kept = is_npz_path(c.keep_name) ? npz_read(c.keep_name, g.motion.skeleton, &kept_face) : motion_read(c.keep_name);
+  }
+  c.keep = &kept;
+  c.keep_body = &kept_face;
+  return c;
+}
+
 // One parameter per keyword argument of gmg.reenact.
 // NOLINTNEXTLINE(readability-function-size)
 PyReenactment reenact(const py::object& graph, const py::object& audio, const py::object& transcript,
                       const py::object& sample_rate, const py::object& words, const std::string& transcript_format,
                       const py::object& tier, const py::object& seed, const py::object& config, const py::object& set,
-                      const py::object& betas, const py::object& name, bool allow_silence) {
+                      const py::object& betas, const py::object& name, bool allow_silence, const py::object& keep,
+                      const py::object& ranges, const py::object& pins) {
   check_one_transcript(transcript, words, "reenact");
   const PyGraph g = graph_arg(graph);
   const Config cfg = config_of(config, set, seed);
+  Motion kept;
+  SmplxBody kept_face;
+  const Control control = control_of(keep, ranges, pins, *g.graph, kept, kept_face);
   const text::TranscriptFormat format = text::parse_transcript_format(transcript_format);
   // Read first, as `gmg reenact --betas` does: a bad file stops before the long work.
   std::vector<double> shape;
@@ -195,7 +243,7 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
     const SpeechFiles speech{path_of(audio), opt_path(transcript), format, opt_text(tier, "tier"), allow_silence};
     label = speech.audio;
     const py::gil_scoped_release release;
-    r = gmg::reenact(*g.graph, speech, cfg, g.name);
+    r = gmg::reenact(*g.graph, speech, cfg, g.name, control);
   } else {
     label = name.is_none() ? (is_path(audio) ? path_of(audio) : std::string("audio")) : text_of(name, "name");
     audio::Audio sound;
@@ -216,7 +264,7 @@ PyReenactment reenact(const py::object& graph, const py::object& audio, const py
       w = text::read_transcript(path, format, t);
     }
     const py::gil_scoped_release release;
-    r = reenact_audio(*g.graph, sound, has_words ? &w : nullptr, cfg, label, g.name, allow_silence);
+    r = reenact_audio(*g.graph, sound, has_words ? &w : nullptr, cfg, label, g.name, allow_silence, control);
   }
   if (!betas.is_none()) reenactment_use_betas(r, std::move(shape), shape_from);
   PyReenactment out;
@@ -481,7 +529,8 @@ error unless allow_silence=True, as `gmg build --allow-silence`. Files only: exa
         py::arg("sample_rate") = py::none(), py::arg("words") = py::none(), py::arg("transcript_format") = "auto",
         py::arg("tier") = py::none(), py::arg("seed") = py::none(), py::arg("config") = py::none(),
         py::arg("set") = py::none(), py::arg("betas") = py::none(), py::arg("name") = py::none(),
-        py::arg("allow_silence") = false,
+        py::arg("allow_silence") = false, py::arg("keep") = py::none(), py::arg("ranges") = py::list(),
+        py::arg("pins") = py::list(),
         R"(Reenacts new speech from a graph (a gmg.Graph or a graph file's path).
 
 audio: a path, or samples (1-D mono or (samples, channels), real numbers) with sample_rate=
@@ -489,8 +538,11 @@ audio: a path, or samples (1-D mono or (samples, channels), real numbers) with s
 speech is an error unless allow_silence=True, as `gmg reenact --allow-silence`;
 transcript: a path, or words=[(start, end, text), ...] (one of the two); seed, config, set as
 for `gmg reenact`;
-betas: an .npz/.npy path or an array, the output's body shape. From files, the motion is
-byte for byte `gmg reenact`'s with the same inputs and seed.)");
+betas: an .npz/.npy path or an array, the output's body shape. keep: an earlier output for this
+audio (a gmg.Reenactment, gmg.Motion or path) kept outside ranges=[(from, to), ...] seconds, which
+are planned afresh; pins=[(at, from, to), ...] or (at, clip, from, to): play the reference's
+from..to seconds at output time at. From files, the motion is byte for byte `gmg reenact`'s with
+the same inputs and seed.)");
   m.def("evaluate", evaluate, py::arg("generated"), py::kw_only(), py::arg("truth") = py::none(),
         py::arg("audio") = py::none(), py::arg("sample_rate") = py::none(), py::arg("other_audio") = py::list(),
         py::arg("report") = py::none(), py::arg("reference") = py::none(), py::arg("skeleton") = py::none(),

@@ -142,6 +142,17 @@ void draw_marker_strip(cairo_t* cr, const Markers& markers, double t, const Rect
     }
     cairo_fill(cr);
   };
+  auto band = [&](const std::vector<std::pair<double, double>>& spans, double r, double g, double b) {
+    cairo_set_source_rgb(cr, r, g, b);
+    for (const auto& [from, to] : spans)
+      if (to >= t - kStripSeconds / 2 - 1 && from <= t + kStripSeconds / 2 + 1)
+        cairo_rectangle(cr, mid + (from - t) * px_per_s, strip.y + strip.h * 0.85, (to - from) * px_per_s,
+                        strip.h * 0.15);
+    cairo_fill(cr);
+  };
+  band(markers.kept_s, 0.55, 0.57, 0.62);
+  band(markers.planned_s, 0.95, 0.7, 0.2);
+  band(markers.pinned_s, 0.62, 0.4, 0.95);
   cairo_set_source_rgb(cr, 0.25, 0.85, 0.4);
   ticks(markers.onsets_s, strip.y + strip.h * 0.45, strip.y + strip.h, 2.0);
   cairo_set_source_rgb(cr, 0.95, 0.22, 0.2);

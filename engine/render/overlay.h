@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cairo.h>
@@ -37,13 +38,17 @@ void draw_caption(cairo_t* cr, const Caption& caption, double t, const Rect& are
 struct Markers {
   std::vector<double> onsets_s;     // speech onsets (audio/onset.h)
   std::vector<double> junctions_s;  // where the reenacted path jumps (report_facts.h)
+  // [from, to) seconds kept from an earlier output, planned afresh and pinned (report_facts.h);
+  // empty for a reenactment made without --keep or --pin.
+  std::vector<std::pair<double, double>> kept_s, planned_s, pinned_s;
 };
 
 // How long a badge stays lit after its event (s).
 inline constexpr double kBadgeSeconds = 0.2;
 
 // A strip showing the events of the 6 s around t, scrolling past a playhead in the middle:
-// onsets as short green ticks, junctions as tall red ones.
+// onsets as short green ticks, junctions as tall red ones; along its bottom edge a band grey where
+// the motion is kept, amber where it is planned and violet where it is pinned.
 void draw_marker_strip(cairo_t* cr, const Markers& markers, double t, const Rect& strip);
 
 // Badges in the top right corner of `panel`, lit for kBadgeSeconds after an event: "onset"

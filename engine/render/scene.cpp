@@ -53,6 +53,9 @@ void read_speech(const RenderInputs& in, Scene& s) {
                         " has " + std::to_string(s.frame_count) + ": is it the report of another motion?");
     s.show_markers = true;
     s.markers.junctions_s = facts.junctions_s;
+    s.markers.kept_s = facts.kept_s;
+    s.markers.planned_s = facts.planned_s;
+    s.markers.pinned_s = facts.pinned_s;
     if (!in.audio.empty())
       s.markers.onsets_s = speech_onsets(sound, facts);
     else

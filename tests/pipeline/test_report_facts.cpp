@@ -43,5 +43,22 @@ TEST(ReportFacts, SomethingElseIsAnErrorNamingTheFile) {
   EXPECT_THROW(read_report_facts(dir.file("y.json"), 30), Error);
 }
 
+// The report's control (`gmg reenact --keep --range --pin`) read back as stretches of seconds.
+TEST(ReportFacts, ControlStretchesInSeconds) {
+  gmg::testing::TempDir dir;
+  gmg::testing::write_text(dir.file("c.json"), R"({"totals": {"failures": 0},
+    "subsequences": [{"start_frame": 0, "target_length": 60, "graph_ranges": [[0, 59]]}],
+    "control": {"kept": [[0, 20], [50, 60]], "planned": [[20, 50]],
+                "pinned": [{"start_frame": 30, "frames": 10, "graph_frame": 7}]}})");
+  const ReportFacts f = read_report_facts(dir.file("c.json"), 10.0);
+  using Spans = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(f.kept_s, (Spans{{0.0, 2.0}, {5.0, 6.0}}));
+  EXPECT_EQ(f.planned_s, (Spans{{2.0, 5.0}}));
+  EXPECT_EQ(f.pinned_s, (Spans{{3.0, 4.0}}));
+  gmg::testing::write_text(dir.file("bad.json"), R"({"totals": {"failures": 0}, "subsequences": [],
+    "control": {"kept": [[5, 2]], "planned": [], "pinned": []}})");
+  EXPECT_THROW(read_report_facts(dir.file("bad.json"), 10.0), Error);
+}
+
 }  // namespace
 }  // namespace gmg
