@@ -5,6 +5,7 @@
 #include "engine/batch/batch_internal.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/interrupt.h"
 #include "engine/core/json.h"
 #include "engine/core/strings.h"
 
