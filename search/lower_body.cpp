@@ -78,8 +78,22 @@ class LowerPlanner {
       if (c.at < 0) {
         if (end >= total_) break;
         // Before the run ends, at the stance of the last few seconds that leads to the nearest one.
+        // A rest that starts there or within a second after the run ends: the change comes before
+        // it and goes to a stance still for it (else the legs would move through the rest, the
+        // stretch changed into too new to change again).
         why = LowerChange::RunEnd;
-        c = change(s, t, end - static_cast<int>(std::lround(kRunEndWindowS * fps_)), end - 2, end - 1, -1, 0);
+        const int lo = end - static_cast<int>(std::lround(kRunEndWindowS * fps_));
+        int hi = end - 2, rest_at = -1, need = 0;
+        for (const auto& [a, b] : windows_) {
+          if (b <= std::max(lo, t + 1)) continue;
+          if (a < end + min_gap && a > std::max(lo, t + 1)) {
+            rest_at = a;
+            need = b - a;
+            hi = std::min(hi, a);
+          }
+          break;
+        }
+        c = change(s, t, lo, hi, end - 1, rest_at, need);
       }
       const int at = c.at, to = c.to;
       played(s, at - t);

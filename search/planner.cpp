@@ -274,7 +274,10 @@ class Planner {
     // The still part follows `lead` frames of the reference's own way into it.
     const int lead = std::min(seg.sub.lead, length - 1), still = length - lead;
     std::vector<int> candidates;
-    for (int f : rests_.stillest(still, kRestCandidates))
+    std::vector<int> stillest = rests_.stillest(still, kRestCandidates);
+    for (int f : rests_.stillest_pauses(still, kRestCandidates / 4))
+      if (std::find(stillest.begin(), stillest.end(), f) == stillest.end()) stillest.push_back(f);
+    for (int f : stillest)
       if (f - lead >= 0 && std::isfinite(rests_.stillness(f - lead, length))) candidates.push_back(f - lead);
     if (continuing_from_ >= 0 && std::isfinite(rests_.stillness(continuing_from_, length)))
       candidates.push_back(continuing_from_);
@@ -289,6 +292,7 @@ class Planner {
       const double junction =
           reference_ < 0 || f == continuing_from_ ? 0.0 : params_.junction_beam * junction_.cost(reference_, f);
       const double cost = junction + kRestStillness * params_.rest_weight * rests_.stillness(f + lead, still) +
+                          kRestPause * (1.0 - rests_.pause_share(f + lead, still)) +
                           params_.reuse_weight * reuse_.path_cost(path, seg.sub.start) +
                           (f == continuing_from_ ? 0.0 : preference_.of(f));
       return BeamCandidate{std::move(path), cost};
@@ -328,6 +332,10 @@ class Planner {
   // stretch moving as the speaker typically does costs 3 more than a still one, three typical
   // transitions: a jump to rest is worth it, a far one is not.
   static constexpr double kRestStillness = 0.25;
+  // A rest's cost when the reference speaks all through it: a typical transition. The speaker's
+  // own pauses are where they rest; a still moment mid-sentence is taken only when it is much
+  // nearer or stiller.
+  static constexpr double kRestPause = 1.0;
 
   PlannedSegment plan_one(std::size_t k, const std::vector<int>& previous_path, bool previous_clean) {
     PlannedSegment seg;
@@ -395,9 +403,14 @@ class Planner {
         if (try_fallback(k, ignoring, Fallback::IgnoreStops, seg)) return seg;
       }
       if (natural_ && last >= 0 && continues(last)) {
-        seg.fallback = Fallback::ContinueMotion;
-        seg.path = natural_run(g_, last + 1, seg.sub.length);
-        return seg;
+        // Played on only where that plays no frame past its cap: a hold is still, a replay a
+        // fourth time is the same gesture again.
+        std::vector<int> run = natural_run(g_, last + 1, seg.sub.length);
+        if (params_.reuse_weight <= 0.0 || reuse_.path_cost(run, seg.sub.start) < ReuseTracker::kCapCost) {
+          seg.fallback = Fallback::ContinueMotion;
+          seg.path = std::move(run);
+          return seg;
+        }
       }
       seg.fallback = Fallback::HoldLastFrame;
     } else {

@@ -27,10 +27,21 @@ class RestFinder {
 
   // Up to `count` graph frames f whose stretch [f, f + length) is stillest, stillest first.
   std::vector<int> stillest(int length, int count) const;
+  // The same among the stretches where the reference mostly pauses (pause_share at least a half).
+  std::vector<int> stillest_pauses(int length, int count) const;
+
+  // The share of graph frames [f, f + length) where the reference's own speech pauses
+  // (audio/speech_features.h pause_weight of its loudness): a speaker rests when they pause, so a
+  // rest is taken from their pauses before their still moments mid-sentence. 1 for a graph
+  // without speech (nothing to prefer); 0 outside f's capture run.
+  double pause_share(int f, int length) const;
 
  private:
+  std::vector<int> stillest_where(int length, int count, bool in_pauses) const;
+
   CaptureRuns runs_;
   std::vector<double> prefix_;  // prefix sums of the activity
+  std::vector<double> pause_;   // prefix sums of the reference speech's pause weight (empty: no speech)
   int hold_ = 0;
 };
 

@@ -55,6 +55,15 @@ void ReuseTracker::play(const std::vector<int>& path, int time) {
 double ReuseTracker::path_cost(const std::vector<int>& path, int time) const {
   double worst = 0.0;
   for (int f : path) worst = std::max(worst, frame_cost(f, time));
+  if (return_window_ > 0 || cap_plays_ > 0) {
+    // A path that comes back to a frame it played (a loop through transitions) plays it twice
+    // within seconds: a jump back, and plays the plays before it cannot see.
+    std::vector<int> frames;
+    for (std::size_t i = 0; i < path.size(); ++i)
+      if (i == 0 || path[i] != path[i - 1]) frames.push_back(path[i]);
+    std::sort(frames.begin(), frames.end());
+    if (std::adjacent_find(frames.begin(), frames.end()) != frames.end()) worst += kCapCost;
+  }
   return worst;
 }
 

@@ -289,7 +289,8 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
          std::string s;
          for (const std::string& j : c.graph.lower_joints) s += (s.empty() ? "" : ",") + j;
          return s;
-       }},
+       },
+       KeyKind::Texts},
       {{"lock_joints", "reference joints whose yaw/pitch are locked and roll smoothed, comma separated (empty: off)"},
        [](Config& c, const std::string& v) { c.cleanup.lock_joints = split_trimmed(v, ','); },
        [](const Config& c) {
@@ -431,6 +432,8 @@ std::string config_to_json(const Config& config) {
       j[a.key.name] = config.search.w_full;
     } else if (a.key.name == "lock_joints") {
       j[a.key.name] = config.cleanup.lock_joints;
+    } else if (a.key.name == "lower_joints") {
+      j[a.key.name] = config.graph.lower_joints;
     } else if (a.key.name == "seed") {
       j[a.key.name] = config.seed;
     } else if (v == "true" || v == "false") {

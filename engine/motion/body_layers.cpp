@@ -165,7 +165,8 @@ BodyLayers body_layers_from_names(const Motion& m, const std::vector<std::string
   const std::vector<std::vector<int>> children = children_of(s);
   std::vector<int> subtree(static_cast<std::size_t>(s.joint_count()), 1);
   for (int j = s.joint_count() - 1; j > 0; --j)
-    subtree[static_cast<std::size_t>(s.joints[static_cast<std::size_t>(j)].parent)] += subtree[static_cast<std::size_t>(j)];
+    subtree[static_cast<std::size_t>(s.joints[static_cast<std::size_t>(j)].parent)] +=
+        subtree[static_cast<std::size_t>(j)];
   out.spine.clear();
   out.hip_branch = -1;
   int best = 0, best_child = -1;

@@ -6,6 +6,7 @@
 #include "engine/assemble/layers.h"
 #include "engine/assemble/transitions.h"
 #include "engine/pipeline/assembly.h"
+#include "graph/graph_check.h"
 #include "graph/reference_facts.h"
 #include "search/rests.h"
 
@@ -56,6 +57,9 @@ Motion assemble_layered(const MotionGraph& g, const Plan& plan, const LowerBody&
   if (!lower.layers.layered()) return upper;
   std::vector<PathPiece> pieces;
   for (const LowerSegment& s : lower.plan.segments) {
+    // The lower body's stretches are read as the upper body's pieces are: checked on use, with the
+    // same margin either side (engine/pipeline/assembly.cpp check_played_frames).
+    graph_check_frames(g, s.source - 8, s.source + s.length - 1 + 8);
     PathPiece piece;
     piece.length = s.length;
     for (int i = 0; i < s.length; ++i) piece.path.push_back(s.source + i);

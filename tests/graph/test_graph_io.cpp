@@ -168,7 +168,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   gmg::testing::TempDir dir;
   graph_save(dir.file("plain.gmg"), g);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 10);
+  EXPECT_EQ(plain[8], 11);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -179,7 +179,7 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   g.body.model = "smplx2020";
   graph_save(dir.file("body.gmg"), g);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 10);
+  EXPECT_EQ(bytes[8], 11);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -290,7 +290,7 @@ TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
   EXPECT_EQ(h9.graph.row_starts(), g.graph.row_starts());
   EXPECT_EQ(h9.graph.targets(), g.graph.targets());
   EXPECT_THROW(graph_save(dir.file("g6.gmg"), g, 6), Error);
-  EXPECT_THROW(graph_save(dir.file("g11.gmg"), g, 11), Error);
+  EXPECT_THROW(graph_save(dir.file("g12.gmg"), g, 12), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("g6.gmg")));
 }
 
@@ -366,6 +366,63 @@ TEST(GraphIo, TheReferenceFactsRoundTrip) {
   EXPECT_TRUE(b.capture.foot_flags.empty());
   EXPECT_TRUE(b.beat_cost.empty());
   EXPECT_EQ(b.keys, bare.keys);
+}
+
+// Format 11 keeps the layers: the reference's up axis, the lower joints named at build, the stance
+// of every frame and the capture's spikes, exactly. Format 10 has none of them: read back, the
+// axis is Y and the stance unknown (a reenactment computes it from the motion).
+TEST(GraphIo, TheLayersRoundTripInFormat11) {
+  MotionGraph g = two_clip_graph();
+  const std::size_t n = static_cast<std::size_t>(g.frame_count());
+  g.up = UpAxis::Z;
+  g.lower_joints = {g.motion.skeleton.joints[0].name};
+  g.stance.known = true;
+  g.stance.leg_length = 0.875;
+  g.stance.still_speed = 0.0625f;
+  std::vector<float> pose(n * kStanceDims), place(n * 2), speed(n);
+  std::vector<std::uint8_t> planted(n), spikes(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    for (int d = 0; d < kStanceDims; ++d) pose[f * kStanceDims + static_cast<std::size_t>(d)] = 0.125f * d - 0.01f * f;
+    place[2 * f] = 0.5f * f;
+    place[2 * f + 1] = -0.25f * f;
+    speed[f] = 0.001f * f;
+    planted[f] = f % 3 == 0;
+    spikes[f] = f == 17 ? 1 : 0;
+  }
+  g.stance.pose = pose;
+  g.stance.place = place;
+  g.stance.speed = speed;
+  g.stance.planted = planted;
+  g.spikes = spikes;
+  TempDir dir;
+  graph_save(dir.file("g.gmg"), g);
+  const MotionGraph h = graph_load(dir.file("g.gmg"));
+  EXPECT_EQ(h.up, UpAxis::Z);
+  EXPECT_EQ(h.lower_joints, g.lower_joints);
+  EXPECT_TRUE(h.stance.known);
+  EXPECT_EQ(h.stance.leg_length, 0.875);
+  EXPECT_EQ(h.stance.still_speed, 0.0625f);
+  EXPECT_EQ(h.stance.pose, g.stance.pose);
+  EXPECT_EQ(h.stance.place, g.stance.place);
+  EXPECT_EQ(h.stance.speed, g.stance.speed);
+  EXPECT_EQ(h.stance.planted, g.stance.planted);
+  EXPECT_EQ(h.spikes, g.spikes);
+
+  graph_save(dir.file("g10.gmg"), g, 10);
+  EXPECT_EQ(read_file_bytes(dir.file("g10.gmg"))[8], 10);
+  const MotionGraph old = graph_load(dir.file("g10.gmg"));
+  EXPECT_EQ(old.up, UpAxis::Y);
+  EXPECT_TRUE(old.lower_joints.empty());
+  EXPECT_FALSE(old.stance.known);
+  EXPECT_TRUE(old.spikes.empty());
+  EXPECT_EQ(old.motion.rotations, g.motion.rotations);
+
+  // A lower joint the skeleton lacks, or an unknown axis, is refused behind a valid checksum.
+  MotionGraph bad = g;
+  bad.lower_joints = {"no_such_joint"};
+  graph_save(dir.file("bad.gmg"), bad);
+  EXPECT_NE(error_of([&] { graph_load(dir.file("bad.gmg")); }).find("a lower joint is not a joint of its skeleton"),
+            std::string::npos);
 }
 
 }  // namespace

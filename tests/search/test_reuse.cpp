@@ -81,5 +81,15 @@ TEST(Reuse, FramesOfEveryBlockCountAlike) {
   EXPECT_NEAR(w[0], r.frame_cost(4096, 10), 1e-12);
   EXPECT_NEAR(w[1], r.frame_cost(2999999, 10), 1e-12);
 }
+// A path that loops back to a frame it already played (5 6 7 through a transition to 5 6 again)
+// shows the same stroke twice within a second: it costs the cap, though the tracker has seen no
+// play of those frames yet. A held frame (5 5 6) is one play and costs nothing more.
+TEST(Reuse, APathThatComesBackToAFrameCostsTheCap) {
+  ReuseTracker r(20, 1e12, 3, 90, 300);
+  EXPECT_GE(r.path_cost({5, 6, 7, 5, 6}, 0), ReuseTracker::kCapCost);
+  EXPECT_EQ(r.path_cost({5, 5, 6, 7}, 0), 0.0);
+  ReuseTracker no_rules(20, 1e12);  // neither a cap nor a return window: loops are not priced
+  EXPECT_EQ(no_rules.path_cost({5, 6, 7, 5, 6}, 0), 0.0);
+}
 }  // namespace
 }  // namespace gmg
