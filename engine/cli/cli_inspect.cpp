@@ -27,7 +27,7 @@ struct InspectArgs {
 // --frames FROM:TO, frames FROM to TO - 1; either end may be left out (0, and -1 for the
 // graph's end). Checked before the graph is read: a range that cannot mean anything is a usage
 // error.
-std::pair<int, int> parse_range(const std::string& text) {
+std::pair<int, int> parse_frame_range(const std::string& text) {
   if (text.empty()) return {0, -1};
   const std::size_t colon = text.find(':');
   if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos)
@@ -86,7 +86,7 @@ std::vector<Count> counts(const MotionGraph& g) {
 }
 
 void run_inspect(const InspectArgs& a) {
-  auto [from, to] = parse_range(a.frames);
+  auto [from, to] = parse_frame_range(a.frames);
   check_output_extensions({{"--dot", a.dot, {".dot", ".gv"}}, {"--graphml", a.graphml, {".graphml", ".xml"}}});
   check_outputs_apart({{"--dot", a.dot}, {"--graphml", a.graphml}}, {{"graph", a.graph}});
   check_outputs({{"--dot", a.dot, {".dot", ".gv"}}, {"--graphml", a.graphml, {".graphml", ".xml"}}});
