@@ -209,6 +209,12 @@ class Planner {
                                       [&](const BeamCandidate& c) { return c.cost >= capped; }),
                        candidates.end());
     }
+    // A path that loops back into itself, where another does not (the beam's cost sees a path's
+    // reuse from its start, not the plays the path makes of itself).
+    std::vector<BeamCandidate> straight;
+    for (const BeamCandidate& c : candidates)
+      if (!ReuseTracker::loops(c.path)) straight.push_back(c);
+    if (!straight.empty()) candidates.swap(straight);
     const long left = spike_budget_ - spikes_used_;
     std::vector<BeamCandidate> within;
     for (const BeamCandidate& c : candidates)

@@ -55,16 +55,17 @@ void ReuseTracker::play(const std::vector<int>& path, int time) {
 double ReuseTracker::path_cost(const std::vector<int>& path, int time) const {
   double worst = 0.0;
   for (int f : path) worst = std::max(worst, frame_cost(f, time));
-  if (return_window_ > 0 || cap_plays_ > 0) {
-    // A path that comes back to a frame it played (a loop through transitions) plays it twice
-    // within seconds: a jump back, and plays the plays before it cannot see.
-    std::vector<int> frames;
-    for (std::size_t i = 0; i < path.size(); ++i)
-      if (i == 0 || path[i] != path[i - 1]) frames.push_back(path[i]);
-    std::sort(frames.begin(), frames.end());
-    if (std::adjacent_find(frames.begin(), frames.end()) != frames.end()) worst += kCapCost;
-  }
+  // A loop plays a frame twice within seconds: a jump back, and plays the tracker cannot see yet.
+  if ((return_window_ > 0 || cap_plays_ > 0) && loops(path)) worst += kCapCost;
   return worst;
+}
+
+bool ReuseTracker::loops(const std::vector<int>& path) {
+  std::vector<int> frames;
+  for (std::size_t i = 0; i < path.size(); ++i)
+    if (i == 0 || path[i] != path[i - 1]) frames.push_back(path[i]);
+  std::sort(frames.begin(), frames.end());
+  return std::adjacent_find(frames.begin(), frames.end()) != frames.end();
 }
 
 void ReuseTracker::window_costs(int window, int time, const std::vector<int>& frames, std::vector<double>& out) const {

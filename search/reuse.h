@@ -53,6 +53,10 @@ class ReuseTracker {
     return p * p + (capped(f, time) ? kCapCost : 0.0);
   }
 
+  // Whether a path comes back to a frame it played (a loop through transitions; a held frame is
+  // one play): the same stroke twice within seconds.
+  static bool loops(const std::vector<int>& path);
+
   // The largest frame_cost over a path's frames.
   double path_cost(const std::vector<int>& path, int time) const;
 
