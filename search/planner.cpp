@@ -201,7 +201,9 @@ class Planner {
   // candidates: the fallbacks look further, and the last one plays the capture on. Nor are, while
   // others remain, those that would play more of the capture's jerk spikes than the output's share
   // of them (engine/motion/spikes.h): a spike is played no more often than the speaker made it.
-  void drop_capped(std::vector<BeamCandidate>& candidates) const {
+  // strict: a fallback's paths, which ignore stops and wander: looping ones go even when none else
+  // remains (the next fallback plays on or holds).
+  void drop_capped(std::vector<BeamCandidate>& candidates, bool strict = false) const {
     if (!natural_) return;
     if (params_.reuse_weight > 0.0) {
       const double capped = params_.reuse_weight * ReuseTracker::kCapCost;
@@ -214,7 +216,7 @@ class Planner {
     std::vector<BeamCandidate> straight;
     for (const BeamCandidate& c : candidates)
       if (!ReuseTracker::loops(c.path)) straight.push_back(c);
-    if (!straight.empty()) candidates.swap(straight);
+    if (!straight.empty() || strict) candidates.swap(straight);
     const long left = spike_budget_ - spikes_used_;
     std::vector<BeamCandidate> within;
     for (const BeamCandidate& c : candidates)
@@ -244,7 +246,7 @@ class Planner {
     BeamResult r = attempts(k, request, {}, &seg.retries, params_.retries + 1);
     ++seg.retries;
     if (!r.accepted) return false;
-    drop_capped(r.candidates);
+    drop_capped(r.candidates, true);
     if (r.candidates.empty()) return false;
     seg.fallback = fallback;
     const BeamCandidate& c = choose(k, r.candidates);
