@@ -18,22 +18,9 @@ std::vector<std::vector<int>> children_of(const Skeleton& s) {
 
 // World positions of every joint in frame 0.
 std::vector<glm::dvec3> first_frame_positions(const Motion& m) {
-  const int joints = m.joint_count();
-  std::vector<glm::dquat> rot(static_cast<std::size_t>(joints));
-  std::vector<glm::dvec3> pos(static_cast<std::size_t>(joints));
-  for (int j = 0; j < joints; ++j) {
-    const std::size_t k = static_cast<std::size_t>(j);
-    const int p = m.skeleton.joints[k].parent;
-    const glm::dquat q = m.frame_count > 0 ? m.rotation(0, j) : glm::dquat(1.0, 0.0, 0.0, 0.0);
-    const glm::dvec3 t = m.frame_count > 0 ? m.translation(0, j) : m.skeleton.joints[k].offset;
-    if (p < 0) {
-      rot[k] = q;
-      pos[k] = t;
-    } else {
-      rot[k] = rot[static_cast<std::size_t>(p)] * q;
-      pos[k] = pos[static_cast<std::size_t>(p)] + rot[static_cast<std::size_t>(p)] * t;
-    }
-  }
+  std::vector<glm::dquat> rot;
+  std::vector<glm::dvec3> pos;
+  motion_world_pose(m, 0, rot, pos);
   return pos;
 }
 

@@ -148,6 +148,25 @@ void motion_check_finite(const Motion& m, const std::string& what) {
   }
 }
 
+void motion_world_pose(const Motion& m, int frame, std::vector<glm::dquat>& out_rot, std::vector<glm::dvec3>& out_pos) {
+  const int joints = m.joint_count();
+  out_rot.resize(static_cast<std::size_t>(joints));
+  out_pos.resize(static_cast<std::size_t>(joints));
+  for (int j = 0; j < joints; ++j) {
+    const std::size_t k = static_cast<std::size_t>(j);
+    const int p = m.skeleton.joints[k].parent;
+    const glm::dquat q = m.frame_count > 0 ? m.rotation(frame, j) : glm::dquat(1.0, 0.0, 0.0, 0.0);
+    const glm::dvec3 t = m.frame_count > 0 ? m.translation(frame, j) : m.skeleton.joints[k].offset;
+    if (p < 0) {
+      out_rot[k] = q;
+      out_pos[k] = t;
+    } else {
+      out_rot[k] = out_rot[static_cast<std::size_t>(p)] * q;
+      out_pos[k] = out_pos[static_cast<std::size_t>(p)] + out_rot[static_cast<std::size_t>(p)] * t;
+    }
+  }
+}
+
 void motion_release_pages(const Motion& m) {
   // A short reference's pages are kept: mapping them again costs more than the memory they hold
   // (every subsequence of a reenactment would fault its stretches in anew).

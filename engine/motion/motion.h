@@ -87,6 +87,10 @@ void motion_copy_frame(const Motion& src, int src_frame, Motion& dst, int dst_fr
 // World joint positions: a frame_count x (3 * joint_count) matrix, columns x, y, z per joint.
 Eigen::MatrixXd motion_forward_kinematics(const Motion& m);
 
+// One frame's world rotations and positions of every joint, into out_rot and out_pos (resized);
+// for a motion without frames, the rest pose (identity rotations, the skeleton's offsets).
+void motion_world_pose(const Motion& m, int frame, std::vector<glm::dquat>& out_rot, std::vector<glm::dvec3>& out_pos);
+
 // Throws gmg::Error naming `what` when any rotation or translation is not finite.
 void motion_check_finite(const Motion& m, const std::string& what);
 

@@ -17,17 +17,7 @@ void each_jerk(const Motion& m, const CaptureRuns& runs, const std::vector<int>&
   std::array<std::vector<glm::dvec3>, 4> window;
   for (auto& w : window) w.resize(joints.size());
   for (int f = 0; f < n; ++f) {
-    for (int j = 0; j < count; ++j) {
-      const std::size_t k = static_cast<std::size_t>(j);
-      const int p = m.skeleton.joints[k].parent;
-      if (p < 0) {
-        rot[k] = m.rotation(f, j);
-        pos[k] = m.translation(f, j);
-      } else {
-        rot[k] = rot[static_cast<std::size_t>(p)] * m.rotation(f, j);
-        pos[k] = pos[static_cast<std::size_t>(p)] + rot[static_cast<std::size_t>(p)] * m.translation(f, j);
-      }
-    }
+    motion_world_pose(m, f, rot, pos);
     std::vector<glm::dvec3>& now = window[static_cast<std::size_t>(f % 4)];
     for (std::size_t i = 0; i < joints.size(); ++i) now[i] = pos[static_cast<std::size_t>(joints[i])] - pos[0];
     if (f > 0 && f % (1 << 16) == 0) motion_release_frames(m, f - (1 << 16), 1 << 16);

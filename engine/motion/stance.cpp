@@ -15,22 +15,6 @@ glm::dquat heading(const glm::dquat& q) {
 }
 
 // World rotation and position of every joint of one frame.
-void world_pose(const Motion& m, int f, std::vector<glm::dquat>& rot, std::vector<glm::dvec3>& pos) {
-  const int joints = m.joint_count();
-  rot.resize(static_cast<std::size_t>(joints));
-  pos.resize(static_cast<std::size_t>(joints));
-  for (int j = 0; j < joints; ++j) {
-    const std::size_t k = static_cast<std::size_t>(j);
-    const int p = m.skeleton.joints[k].parent;
-    if (p < 0) {
-      rot[k] = m.rotation(f, j);
-      pos[k] = m.translation(f, j);
-    } else {
-      rot[k] = rot[static_cast<std::size_t>(p)] * m.rotation(f, j);
-      pos[k] = pos[static_cast<std::size_t>(p)] + rot[static_cast<std::size_t>(p)] * m.translation(f, j);
-    }
-  }
-}
 
 }  // namespace
 
@@ -40,7 +24,7 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
   const std::size_t frames = static_cast<std::size_t>(m.frame_count);
   std::vector<glm::dquat> rot;
   std::vector<glm::dvec3> pos;
-  world_pose(m, 0, rot, pos);
+  motion_world_pose(m, 0, rot, pos);
   const int hips = layers.hip_branch;
   if (layers.feet.size() != 2) return out;
   const int feet[2] = {layers.feet[0], layers.feet[1]};
@@ -56,7 +40,7 @@ Stance stance_facts(const Motion& m, const CaptureRuns& runs, const BodyLayers& 
   std::vector<std::vector<glm::dvec3>> rel(frames);  // leg joints relative to the hips, world axes
   std::vector<float> pose(frames * kStanceDims, 0.0f);
   for (std::size_t f = 0; f < frames; ++f) {
-    world_pose(m, static_cast<int>(f), rot, pos);
+    motion_world_pose(m, static_cast<int>(f), rot, pos);
     const glm::dquat hr = rot[static_cast<std::size_t>(hips)];
     const glm::dvec3 hp = pos[static_cast<std::size_t>(hips)];
     const glm::dquat inv_heading = glm::conjugate(heading(hr));

@@ -44,18 +44,10 @@ UpAxis detect_up_axis(const Motion& m) {
   for (int s = 0; s < samples; ++s) {
     const int f = static_cast<int>(static_cast<long long>(s) * (m.frame_count - 1) / std::max(1, samples - 1));
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (int j = 0; j < joints; ++j) {
-      const std::size_t k = static_cast<std::size_t>(j);
-      const int p = m.skeleton.joints[k].parent;
-      if (p < 0) {
-        rot[k] = m.rotation(f, j);
-        pos[k] = m.translation(f, j);
-      } else {
-        rot[k] = rot[static_cast<std::size_t>(p)] * m.rotation(f, j);
-        pos[k] = pos[static_cast<std::size_t>(p)] + rot[static_cast<std::size_t>(p)] * m.translation(f, j);
-      }
-      lo = glm::min(lo, pos[k]);
-      hi = glm::max(hi, pos[k]);
+    motion_world_pose(m, f, rot, pos);
+    for (const glm::dvec3& p : pos) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
     }
     extent_y.push_back(hi.y - lo.y);
     extent_z.push_back(hi.z - lo.z);
