@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/limits.h"
 #include "engine/core/strings.h"
+#include "engine/face/face_track.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/pipeline/lower_body.h"
 #include "engine/pipeline/report.h"
@@ -43,6 +44,9 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
                                     : assemble_motion(g, r.plan, assembly_params(config));
   motion_from_y_up(r.motion, g.up);  // the output in the reference's own up axis
   r.body = assemble_body(g, r.plan, assembly_params(config));
+  // After the body's planning, and drawing no random numbers: the body is the same with either face.
+  const FaceTrack face = face_track(g, events.face_features.values, &events.phones, events.total_frames, config.face);
+  apply_face_track(g, face, r.motion, r.body);
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
   r.report =
@@ -51,6 +55,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
     r.report["body"] = std::move(body);
   if (nlohmann::ordered_json legs = lower_body_report(g.motion.skeleton, lower); !legs.is_null())
     r.report["lower_body"] = std::move(legs);
+  if (r.report.contains("body") || !face.sources.empty()) r.report["face_track"] = face_track_report(face);
   r.warnings = events.warnings;
   return r;
 }
