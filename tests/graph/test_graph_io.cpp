@@ -165,9 +165,11 @@ TEST(GraphIo, SaveLoadRoundTrip) {
 TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   MotionGraph g = two_clip_graph();
   gmg::testing::TempDir dir;
-  graph_save(dir.file("plain.gmg"), g);
+  // Format 11, whose body is the last section before the motion (format 12 puts the face speech
+  // between them: tests/graph/test_graph_face_section.cpp).
+  graph_save(dir.file("plain.gmg"), g, 11);
   const std::string plain = read_file_bytes(dir.file("plain.gmg"));
-  EXPECT_EQ(plain[8], 10);
+  EXPECT_EQ(plain[8], 11);
   EXPECT_FALSE(graph_load(dir.file("plain.gmg")).body.has_face());
 
   g.body.expression_dims = 2;
@@ -176,9 +178,9 @@ TEST(GraphIo, TheBodyComesBeforeTheMotion) {
   g.body.betas = {1.25, -0.75, 3.0};
   g.body.gender = "female";
   g.body.model = "smplx2020";
-  graph_save(dir.file("body.gmg"), g);
+  graph_save(dir.file("body.gmg"), g, 11);
   const std::string bytes = read_file_bytes(dir.file("body.gmg"));
-  EXPECT_EQ(bytes[8], 10);
+  EXPECT_EQ(bytes[8], 11);
   const MotionGraph h = graph_load(dir.file("body.gmg"));
   EXPECT_EQ(h.body.expression_dims, 2);
   EXPECT_EQ(h.body.expressions, g.body.expressions);
@@ -405,15 +407,15 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x40);
   expect_error(flipped, "damaged");
   std::string version = bytes;
-  version[8] = 11;
-  expect_error(version, "version 11");
+  version[8] = 13;
+  expect_error(version, "version 13");
   // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
   // facts; 6: another checksum) are refused before anything else is read, with the advice to
   // rebuild them.
   for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads versions 7 to 10: rebuild it with 'gmg build'");
+                              ", this gmg reads versions 7 to 12: rebuild it with 'gmg build'");
   }
 }
 
@@ -426,18 +428,18 @@ TEST(GraphIo, AnOlderVersionFieldIsNamedWhenTheFileDoesNotReadAsThatVersion) {
   const std::string path = dir.file("g.gmg");
   graph_save(path, two_clip_graph());
   std::string bytes = read_file_bytes(path);
-  ASSERT_EQ(bytes[8], 10);
+  ASSERT_EQ(bytes[8], 12);
   bytes[8] = 9;
   gmg::testing::write_text(path, bytes);
   const std::string error = gmg::testing::error_of([&] { graph_load(path); });
   EXPECT_EQ(error.rfind(path + ": byte ", 0), 0u) << error;
   EXPECT_NE(error.find(": damaged graph file: "), std::string::npos) << error;
-  const std::string note = " (read as format version 9, which its header gives; this gmg reads versions 7 to 10)";
+  const std::string note = " (read as format version 9, which its header gives; this gmg reads versions 7 to 12)";
   ASSERT_GE(error.size(), note.size());
   EXPECT_EQ(error.substr(error.size() - note.size()), note) << error;
 
-  // The same damage read as format 10: a field's check fails without the note.
-  bytes[8] = 10;
+  // The same damage read as format 12: a field's check fails without the note.
+  bytes[8] = 12;
   const std::size_t flags = bytes.size() / 2;  // in the padding before the key poses
   bytes[flags] = static_cast<char>(bytes[flags] ^ 0x40);
   gmg::testing::write_text(path, bytes);
@@ -601,7 +603,7 @@ TEST(GraphIo, FormatSevenIsTheGraphWithoutItsSketch) {
   EXPECT_EQ(h9.graph.row_starts(), g.graph.row_starts());
   EXPECT_EQ(h9.graph.targets(), g.graph.targets());
   EXPECT_THROW(graph_save(dir.file("g6.gmg"), g, 6), Error);
-  EXPECT_THROW(graph_save(dir.file("g11.gmg"), g, 11), Error);
+  EXPECT_THROW(graph_save(dir.file("g13.gmg"), g, 13), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.file("g6.gmg")));
 }
 
