@@ -235,8 +235,9 @@ TEST(ConfigKeys, EveryWholeNumberKeyHasADocumentedRange) {
     ++checked;
   }
   // l_cn, l_pn, max_transitions, candidates_per_transition, exact_frames, ann_checks, l_npaths, l_feat,
-  // retries, merge_below, reuse_cap_plays, ignore_rounds, start_candidates, l_blend, smooth_window, smooth_order
-  EXPECT_EQ(checked, 16);
+  // retries, merge_below, reuse_cap_plays, ignore_rounds, start_candidates, l_blend, smooth_window, smooth_order,
+  // face_candidates, face_unit_frames
+  EXPECT_EQ(checked, 18);
   Config c;
   EXPECT_EQ(error_of([&] { config_set(c, "l_npaths", "1000000000"); }),
             "config key 'l_npaths': 1000000000 is out of range (1 to 1000)");
