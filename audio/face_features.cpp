@@ -102,13 +102,13 @@ FaceAudio face_audio(const Audio& audio) {
       if (i > 0 && (x[static_cast<std::size_t>(i)] >= 0.0f) != (x[static_cast<std::size_t>(i - 1)] >= 0.0f)) ++cross;
     }
     std::fill(fft.in, fft.in + kNfft, 0.0f);
-    for (int i = 0; i < width; ++i)
-      fft.in[i] = x[static_cast<std::size_t>(i)] * window[static_cast<std::size_t>(i)];
+    for (int i = 0; i < width; ++i) fft.in[i] = x[static_cast<std::size_t>(i)] * window[static_cast<std::size_t>(i)];
     fftwf_execute_dft_r2c(plan, fft.in, fft.out);
     for (int b = 0; b < FaceAudio::kBands; ++b) {
       double power = 1e-12;
       for (int i = edge[static_cast<std::size_t>(b)]; i < edge[static_cast<std::size_t>(b + 1)]; ++i)
-        power += static_cast<double>(fft.out[i][0]) * fft.out[i][0] + static_cast<double>(fft.out[i][1]) * fft.out[i][1];
+        power +=
+            static_cast<double>(fft.out[i][0]) * fft.out[i][0] + static_cast<double>(fft.out[i][1]) * fft.out[i][1];
       t.band_db.push_back(static_cast<float>(10.0 * std::log10(power)));
     }
     t.crossings.push_back(static_cast<float>(cross / (width / rate * 1000.0)));

@@ -18,9 +18,9 @@ std::string phone_symbol(std::string_view label) {
 }
 
 std::vector<Phone> read_phones(const std::string& path, TranscriptFormat format) {
-  const bool textgrid =
-      format == TranscriptFormat::TextGrid ||
-      (format == TranscriptFormat::Auto && ascii_lower(std::filesystem::path(path).extension().string()) == ".textgrid");
+  const bool textgrid = format == TranscriptFormat::TextGrid ||
+                        (format == TranscriptFormat::Auto &&
+                         ascii_lower(std::filesystem::path(path).extension().string()) == ".textgrid");
   if (!textgrid) return {};
   return parse_textgrid_phones(read_file_bytes(path), path);
 }

@@ -8,11 +8,11 @@
 namespace gmg {
 namespace {
 
-// How much stretches are looked at, at most, for a window unit: they start every other frame (a
-// face changes little in 67 ms, and it halves the time of the audio-only track), every few frames
-// in a longer reference.
+// How much stretches are looked at, at most, for a window unit: they start every third frame (a
+// face changes little in 100 ms, and the scan is most of the audio-only track's time), every few
+// frames in a longer reference; each is compared over the window's own frames.
 constexpr int kMaxWindowStarts = 20000;
-constexpr int kWindowStep = 2;
+constexpr int kWindowStep = 3;
 // A phone unit's reference phones of other symbols of the same viseme join its own while it has
 // fewer than this many.
 constexpr std::size_t kMinSameSymbol = 4;
@@ -40,7 +40,8 @@ class TargetCost {
     b = std::min(b, t_.frames);
     if (b <= a) return 0.0;
     const double rate = (c.end - c.start) / (u.end - u.start);
-    const int lo = r_.clip_first[static_cast<std::size_t>(c.clip)], hi = r_.clip_end[static_cast<std::size_t>(c.clip)] - 1;
+    const int lo = r_.clip_first[static_cast<std::size_t>(c.clip)],
+              hi = r_.clip_end[static_cast<std::size_t>(c.clip)] - 1;
     const int dims = r_.dims;
     double sound = 0.0, jaw = 0.0;
     for (int f = a; f < b; ++f) {
@@ -60,7 +61,8 @@ class TargetCost {
   double phone_cost(const FaceUnit& u, const FacePhone& ref) const {
     const double length = (ref.end - ref.start) / (u.end - u.start);
     return p_.phone_weight * text::phone_difference(u.symbol, ref.symbol) +
-           p_.context_weight * 0.5 * (text::phone_difference(u.left, ref.left) + text::phone_difference(u.right, ref.right)) +
+           p_.context_weight * 0.5 *
+               (text::phone_difference(u.left, ref.left) + text::phone_difference(u.right, ref.right)) +
            p_.duration_weight * std::abs(std::log(length));
   }
 
@@ -92,7 +94,7 @@ std::vector<FaceCandidate> window_candidates(const ReferenceFace& r, const FaceU
     const int first = r.clip_first[c], last = r.clip_end[c] - whole;
     for (int s = first; s <= last; s += stride) {
       FaceCandidate fc{static_cast<double>(s), s + length, static_cast<int>(c), 0.0};
-      fc.cost = cost.speech_cost(u, fc, 1);
+      fc.cost = cost.speech_cost(u, fc, 0);
       out.push_back(fc);
     }
   }

@@ -20,8 +20,8 @@ struct FaceCandidate {
 // The new speech as the target costs read it.
 struct FaceTarget {
   int frames = 0;
-  std::vector<float> z;           // frames x reference dims: the face features over the reference's spread
-  std::vector<double> jaw;        // the jaw predicted at each frame (engine/face/jaw_model.h); empty: none
+  std::vector<float> z;     // frames x reference dims: the face features over the reference's spread
+  std::vector<double> jaw;  // the jaw predicted at each frame (engine/face/jaw_model.h); empty: none
 };
 
 // At most params.candidates per unit, cheapest first; never none while the reference has frames

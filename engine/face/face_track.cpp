@@ -42,7 +42,8 @@ FaceTrack face_track(const MotionGraph& g, const std::vector<float>& features, c
   for (std::size_t f = 0; f < n; ++f)
     for (int d = 0; d < r.dims; ++d) {
       const std::size_t i = f * static_cast<std::size_t>(r.dims) + static_cast<std::size_t>(d);
-      target.z[i] = static_cast<float>((features[i] - r.mean[static_cast<std::size_t>(d)]) / r.sd[static_cast<std::size_t>(d)]);
+      target.z[i] =
+          static_cast<float>((features[i] - r.mean[static_cast<std::size_t>(d)]) / r.sd[static_cast<std::size_t>(d)]);
     }
   t.from_phones = phones && !phones->empty() && !r.phones.empty();
   const std::vector<FaceUnit> units = face_units(t.from_phones ? phones : nullptr, r.fps, frames, params);
@@ -107,7 +108,8 @@ void apply_face_track(const MotionGraph& g, const FaceTrack& track, Motion& moti
       for (int d = 0; d < dims; ++d) {
         const auto value = [&](double time) {
           return at_time(time, total, [&](int f0, int f1, double a) {
-            return (1.0 - a) * e[static_cast<std::size_t>(f0) * dims + d] + a * e[static_cast<std::size_t>(f1) * dims + d];
+            return (1.0 - a) * e[static_cast<std::size_t>(f0) * dims + d] +
+                   a * e[static_cast<std::size_t>(f1) * dims + d];
           });
         };
         out[d] = s.w > 0.0 ? (1.0 - s.w) * value(s.a) + s.w * value(s.b) : value(s.a);

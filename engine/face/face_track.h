@@ -26,9 +26,9 @@ struct FaceTrack {
   std::vector<FaceSource> sources;  // one per output frame; empty: the face follows the body
   bool from_phones = false;         // units were the new speech's phones
   int units = 0;
-  int cuts = 0;                     // joins of stretches that do not follow each other in the reference
-  std::string follows;              // "speech" or "body"
-  std::string why;                  // why the face follows the body ("" when it follows the speech)
+  int cuts = 0;         // joins of stretches that do not follow each other in the reference
+  std::string follows;  // "speech" or "body"
+  std::string why;      // why the face follows the body ("" when it follows the speech)
 };
 
 // Whether g can give a face track: a face (expressions) or a jaw joint, and its face speech known.

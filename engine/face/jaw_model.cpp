@@ -15,9 +15,7 @@ constexpr int kLag = 2;
 // reference says once does not decide its weight alone.
 constexpr double kRidge = 10.0;
 
-int columns(int dims, bool with_visemes) {
-  return 1 + (2 * kLag + 1) * dims + (with_visemes ? text::kVisemeCount : 0);
-}
+int columns(int dims, bool with_visemes) { return 1 + (2 * kLag + 1) * dims + (with_visemes ? text::kVisemeCount : 0); }
 
 // Row of frame f of a speech [first, end) (lags clamped to it).
 void row_of(const float* z, int dims, int first, int end, int f, bool with_visemes, text::Viseme v, double* out) {
@@ -36,7 +34,8 @@ void row_of(const float* z, int dims, int first, int end, int f, bool with_visem
 std::vector<text::Viseme> frame_visemes(const std::vector<TimedViseme>& phones, int frames) {
   std::vector<text::Viseme> v(static_cast<std::size_t>(std::max(0, frames)), text::Viseme::Silence);
   for (const TimedViseme& p : phones) {
-    const int a = std::max(0, static_cast<int>(std::ceil(p.start))), b = std::min(frames, static_cast<int>(std::ceil(p.end)));
+    const int a = std::max(0, static_cast<int>(std::ceil(p.start))),
+              b = std::min(frames, static_cast<int>(std::ceil(p.end)));
     for (int f = a; f < b; ++f) v[static_cast<std::size_t>(f)] = p.viseme;
   }
   return v;

@@ -55,13 +55,14 @@ void add_phones(const MotionGraph& g, ReferenceFace& r) {
     r.phones.push_back(p);
     const bool last_of_clip = i + 1 == spoken.size() || spoken[i + 1].clip != p.clip;
     if (last_of_clip && r.clip_end[static_cast<std::size_t>(p.clip)] - p.end >= 1.0)
-      r.phones.push_back({p.end, static_cast<double>(r.clip_end[static_cast<std::size_t>(p.clip)]), "", p.symbol, "",
-                          p.clip});
+      r.phones.push_back(
+          {p.end, static_cast<double>(r.clip_end[static_cast<std::size_t>(p.clip)]), "", p.symbol, "", p.clip});
   }
   for (std::size_t i = 0; i < r.phones.size(); ++i) {
     FacePhone& p = r.phones[i];
     const bool joined_before = i > 0 && r.phones[i - 1].clip == p.clip && r.phones[i - 1].end == p.start;
-    const bool joined_after = i + 1 < r.phones.size() && r.phones[i + 1].clip == p.clip && r.phones[i + 1].start == p.end;
+    const bool joined_after =
+        i + 1 < r.phones.size() && r.phones[i + 1].clip == p.clip && r.phones[i + 1].start == p.end;
     p.left = joined_before ? r.phones[i - 1].symbol : "";
     p.right = joined_after ? r.phones[i + 1].symbol : "";
   }
@@ -127,9 +128,9 @@ ReferenceFace reference_face(const MotionGraph& g) {
     int k = 0;
     if (r.has_jaw()) out[k++] = static_cast<float>(r.jaw[f] / r.jaw_sd);
     for (int e = 0; e < kept; ++e)
-      out[k++] = static_cast<float>((r.expressions[f * static_cast<std::size_t>(r.expression_dims) + e] -
-                                     e_mean[static_cast<std::size_t>(e)]) /
-                                    e_sd[static_cast<std::size_t>(e)]);
+      out[k++] = static_cast<float>(
+          (r.expressions[f * static_cast<std::size_t>(r.expression_dims) + e] - e_mean[static_cast<std::size_t>(e)]) /
+          e_sd[static_cast<std::size_t>(e)]);
   }
   add_phones(g, r);
   return r;

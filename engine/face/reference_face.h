@@ -24,13 +24,13 @@ struct FacePhone {
 struct ReferenceFace {
   double fps = 30.0;
   int frames = 0;
-  int dims = 0;                      // face features per frame
-  std::vector<float> z;              // frames x dims: the features over their reference spread
-  std::vector<float> jaw;            // the jaw's angle per frame; empty without a jaw joint
-  double jaw_sd = 0.0;               // its spread (> 0 when there is a jaw)
+  int dims = 0;                         // face features per frame
+  std::vector<float> z;                 // frames x dims: the features over their reference spread
+  std::vector<float> jaw;               // the jaw's angle per frame; empty without a jaw joint
+  double jaw_sd = 0.0;                  // its spread (> 0 when there is a jaw)
   const double* expressions = nullptr;  // frames x expression_dims, or null
   int expression_dims = 0;
-  std::vector<int> clip_of;             // each frame's clip
+  std::vector<int> clip_of;               // each frame's clip
   std::vector<int> clip_first, clip_end;  // each clip's frames [first, end)
   std::vector<FacePhone> phones;          // phones and silences, in time order; empty without phones
   std::vector<char> has_phones;           // each clip's: 1 when its transcript had phones

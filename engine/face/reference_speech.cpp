@@ -36,7 +36,8 @@ FaceSpeech face_speech_of(const MotionGraph& g, const std::vector<ClipFaceSpeech
   if (jaw >= 0) {
     std::vector<float>& a = out.jaw.vec();
     a.reserve(static_cast<std::size_t>(g.frame_count()));
-    for (int f = 0; f < g.frame_count(); ++f) a.push_back(static_cast<float>(rotation_angle(g.motion.rotation(f, jaw))));
+    for (int f = 0; f < g.frame_count(); ++f)
+      a.push_back(static_cast<float>(rotation_angle(g.motion.rotation(f, jaw))));
   }
   std::map<std::string, std::uint32_t> index;
   for (std::size_t c = 0; c < clips.size(); ++c) {

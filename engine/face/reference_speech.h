@@ -11,7 +11,7 @@ namespace gmg {
 
 // One reference clip's speech as the face track keeps it.
 struct ClipFaceSpeech {
-  std::vector<float> features;     // the clip's frames x audio::FaceFeatures::kDims; empty: none
+  std::vector<float> features;      // the clip's frames x audio::FaceFeatures::kDims; empty: none
   std::vector<text::Phone> phones;  // seconds from the clip's start; empty: no phones tier
 };
 

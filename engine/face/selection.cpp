@@ -12,7 +12,8 @@ double face_join_cost(const ReferenceFace& r, const FaceCandidate& a, const Face
                       const FaceParams& params) {
   if (a.clip == b.clip && std::abs(a.end - b.start) < 0.5) return 0.0;  // the reference goes on
   const int lo = r.clip_first[static_cast<std::size_t>(a.clip)], hi = r.clip_end[static_cast<std::size_t>(a.clip)] - 1;
-  const int blo = r.clip_first[static_cast<std::size_t>(b.clip)], bhi = r.clip_end[static_cast<std::size_t>(b.clip)] - 1;
+  const int blo = r.clip_first[static_cast<std::size_t>(b.clip)],
+            bhi = r.clip_end[static_cast<std::size_t>(b.clip)] - 1;
   // The last frame a plays and the first b plays (engine/face/warp.h).
   const int fa = std::clamp(static_cast<int>(std::ceil(a.end)) - 1, lo, hi);
   const int fb = std::clamp(static_cast<int>(std::ceil(b.start)), blo, bhi);
@@ -20,7 +21,8 @@ double face_join_cost(const ReferenceFace& r, const FaceCandidate& a, const Face
   return params.join_weight * (distance + params.join_cost);
 }
 
-std::vector<int> select_face_stretches(const ReferenceFace& r, const std::vector<std::vector<FaceCandidate>>& candidates,
+std::vector<int> select_face_stretches(const ReferenceFace& r,
+                                       const std::vector<std::vector<FaceCandidate>>& candidates,
                                        const FaceParams& params) {
   const std::size_t n = candidates.size();
   std::vector<int> out(n, 0);

@@ -13,7 +13,8 @@ namespace gmg {
 
 // Per unit, the index of the candidate chosen (units with no candidate cannot occur: candidates has
 // one list per unit, none empty). Deterministic: ties go to the cheaper-ranked candidate.
-std::vector<int> select_face_stretches(const ReferenceFace& r, const std::vector<std::vector<FaceCandidate>>& candidates,
+std::vector<int> select_face_stretches(const ReferenceFace& r,
+                                       const std::vector<std::vector<FaceCandidate>>& candidates,
                                        const FaceParams& params);
 
 // The join cost of playing b right after a (0 when b goes on where a ends in the same clip).

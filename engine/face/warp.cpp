@@ -42,8 +42,8 @@ std::vector<FaceSource> face_sources(const ReferenceFace& r, const std::vector<F
     const FaceCandidate& after = chosen[std::max(k, other)];
     if (before.clip == after.clip && std::abs(before.end - after.start) < 0.5) continue;
     const double join = to_next ? units[k].end : units[k].start;
-    const double half = std::min({crossfade_frames, 0.5 * (units[k].end - units[k].start),
-                                  0.5 * (units[other].end - units[other].start)});
+    const double half = std::min(
+        {crossfade_frames, 0.5 * (units[k].end - units[k].start), 0.5 * (units[other].end - units[other].start)});
     const double d = std::abs(t - join);
     if (!(half > 0.0) || d >= half) continue;
     // Weight of the other stretch: 0.5 at the join, falling linearly to 0 at `half` from it.

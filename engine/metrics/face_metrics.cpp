@@ -43,7 +43,8 @@ std::vector<double> frame_rms(const audio::Audio& sound, double fps, int frames)
     const long long b = std::min(n, std::llround((f + 0.5) / fps * sound.sample_rate));
     double sum = 0.0;
     for (long long i = a; i < b; ++i)
-      sum += static_cast<double>(sound.samples[static_cast<std::size_t>(i)]) * sound.samples[static_cast<std::size_t>(i)];
+      sum +=
+          static_cast<double>(sound.samples[static_cast<std::size_t>(i)]) * sound.samples[static_cast<std::size_t>(i)];
     out[static_cast<std::size_t>(f)] = b > a ? std::sqrt(sum / static_cast<double>(b - a)) : 0.0;
   }
   return out;

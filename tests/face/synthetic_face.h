@@ -15,9 +15,9 @@
 namespace gmg::testing {
 
 inline constexpr double kFps = 30.0;
-inline constexpr double kOpen = 0.4;    // the jaw's angle on an open vowel, radians
-inline constexpr double kMiddle = 0.15; // on any other phone
-inline constexpr double kClosed = 0.0;  // on m, b, p and in silence
+inline constexpr double kOpen = 0.4;     // the jaw's angle on an open vowel, radians
+inline constexpr double kMiddle = 0.15;  // on any other phone
+inline constexpr double kClosed = 0.0;   // on m, b, p and in silence
 
 inline double jaw_of(const std::string& symbol) {
   const text::Viseme v = text::viseme_of(symbol);

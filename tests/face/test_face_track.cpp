@@ -31,8 +31,8 @@ std::vector<text::Phone> reference_phones() {
 
 // New speech: other words, other lengths.
 std::vector<text::Phone> new_phones() {
-  const std::vector<std::vector<std::string>> words = {{"B", "AA", "M"}, {"P", "AE", "P"}, {"M", "AH", "B"},
-                                                       {"T", "IY", "M"}, {"AA", "M"}};
+  const std::vector<std::vector<std::string>> words = {
+      {"B", "AA", "M"}, {"P", "AE", "P"}, {"M", "AH", "B"}, {"T", "IY", "M"}, {"AA", "M"}};
   std::vector<std::string> symbols;
   for (int w = 0; w < 15; ++w) {
     for (const std::string& s : words[static_cast<std::size_t>(w) % words.size()]) symbols.push_back(s);

@@ -1,10 +1,10 @@
 // Units of new speech (phones, silences, windows), the selection's joins and the warp's cross-fades.
 #include <gtest/gtest.h>
 
+#include "engine/face/reference_face.h"
 #include "engine/face/selection.h"
 #include "engine/face/units.h"
 #include "engine/face/warp.h"
-#include "engine/face/reference_face.h"
 #include "tests/face/synthetic_face.h"
 
 namespace gmg {
@@ -15,8 +15,7 @@ using namespace gmg::testing;
 TEST(FaceUnits, PhonesSilencesAndLongPausesAsWindows) {
   // Phones at 30 fps: frames 3-9 "M", 9-15 "AA", a pause of 6 frames, 21-24 "P", then a pause of
   // 30 frames (1 s, over silence_unit_max_s 0.4) to the end at 54.
-  const std::vector<text::Phone> phones = {
-      {0.1, 0.3, "M"}, {0.3, 0.5, "AA"}, {0.7, 0.8, "P"}};
+  const std::vector<text::Phone> phones = {{0.1, 0.3, "M"}, {0.3, 0.5, "AA"}, {0.7, 0.8, "P"}};
   FaceParams p;
   const std::vector<FaceUnit> u = face_units(&phones, 30.0, 54, p);
   ASSERT_EQ(u.size(), 13u);
