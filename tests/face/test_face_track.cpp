@@ -51,8 +51,14 @@ struct Output {
   FaceTrack track;
 };
 
+FaceParams speech_params() {
+  FaceParams p;
+  p.mode = FaceMode::Speech;
+  return p;
+}
+
 Output reenact_face(const MotionGraph& g, const std::vector<text::Phone>& phones, bool give_phones,
-                    const FaceParams& params = {}) {
+                    const FaceParams& params = speech_params()) {
   const int frames = frames_of(phones);
   Output out;
   out.motion = motion_rest(g.motion.skeleton, kFps, frames);
@@ -107,7 +113,7 @@ TEST(FaceTrack, EveryExpressionStaysInsideTheReferencesRange) {
   const std::vector<text::Phone> ref = reference_phones();
   const MotionGraph g = face_graph(ref, frames_of(ref));
   for (const bool phones : {true, false}) {
-    FaceParams p;
+    FaceParams p = speech_params();
     p.crossfade_s = 0.2;  // long cross-fades: many blended frames
     const Output out = reenact_face(g, new_phones(), phones, p);
     ASSERT_EQ(out.track.follows, "speech");
@@ -182,7 +188,7 @@ TEST(FaceTrack, FollowsTheBodyWhenAskedOrWhenTheGraphCannotSayMore) {
 TEST(FaceTrack, ItsParametersAreCheckedWithTheirRanges) {
   const std::vector<text::Phone> ref = reference_phones();
   const MotionGraph g = face_graph(ref, frames_of(ref));
-  FaceParams p;
+  FaceParams p = speech_params();
   p.candidates = 0;
   EXPECT_THROW(reenact_face(g, new_phones(), true, p), Error);
   p = FaceParams();
