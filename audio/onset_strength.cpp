@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include "audio/fftw_planner.h"
 #include "audio/lanes.h"
 #include "audio/mel_bank.h"
 #include "audio/onset.h"
@@ -44,8 +45,7 @@ const std::vector<double>& hann_window() {
 // thread-safe, so it is made once, under a lock; executing a plan on other arrays of the same
 // alignment is safe from any thread).
 fftwf_plan fft_plan() {
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
+  const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   static fftwf_plan plan = [] {
     float* in = fftwf_alloc_real(kNfft);
     fftwf_complex* out = fftwf_alloc_complex(kBins);

@@ -34,6 +34,7 @@ void write_payload(ArchiveWriter& w, const MotionGraph& g, std::uint32_t version
   write_reference_facts(w, g);
   if (version >= 11) write_layers(w, g);
   write_body(w, g.body);
+  if (version >= 12) write_face_speech(w, g);
   write_motion(w, g.motion, version >= 9 ? &g.key_poses : nullptr);
 }
 
@@ -58,6 +59,7 @@ MotionGraph read_payload(ArchiveReader& r, const ArchiveSource& src, const std::
   read_reference_facts(r, src, g);
   if (version >= 11) read_layers(r, src, g);
   read_body(r, g);
+  if (version >= 12) read_face_speech(r, src, g);
   read_motion(r, g, path, mode, summed_to, damaged, version >= 9 ? &tail : nullptr);
   if (!r.done()) r.fail("trailing bytes after the motion");
   return g;

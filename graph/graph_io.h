@@ -12,7 +12,7 @@ namespace gmg {
 
 // The graph file format this gmg writes, and the oldest it reads; docs/graph_format.md describes
 // the layout and what each version changed.
-constexpr std::uint32_t kGraphFormatVersion = 11;
+constexpr std::uint32_t kGraphFormatVersion = 12;
 constexpr std::uint32_t kOldestGraphFormatRead = 7;
 
 // Writes atomically, in format `version` (kOldestGraphFormatRead to kGraphFormatVersion: 7 leaves

@@ -76,4 +76,11 @@ void read_body(ArchiveReader& r, MotionGraph& g);
 void write_layers(ArchiveWriter& w, const MotionGraph& g);
 void read_layers(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g);
 
+// The reference's face speech (format 12 on, graph/face_speech.h; graph_face_section.cpp): feature
+// dims, the features (f32 a dim and frame, aligned), the jaw angle (f32 a frame, aligned, or none),
+// the phone symbols, and the phones' starts, ends (f64 graph frames) and symbols (u32). The reader
+// checks every value as the face track uses it; older formats have none (not known).
+void write_face_speech(ArchiveWriter& w, const MotionGraph& g);
+void read_face_speech(ArchiveReader& r, const ArchiveSource& src, MotionGraph& g);
+
 }  // namespace gmg

@@ -35,6 +35,7 @@
 #include "engine/motion/samples.h"
 #include "engine/motion/stance.h"
 #include "engine/motion/up_axis.h"
+#include "graph/face_speech.h"
 #include "graph/keyword_label.h"
 #include "graph/params.h"
 
@@ -220,6 +221,9 @@ struct MotionGraph {
   // under every frame (body.expressions: frame_count x body.expression_dims, or empty); empty for
   // BVH references. A reenactment plays the face along with the motion.
   SmplxBody body;
+  // The reference's speech as the face track reads it (graph/face_speech.h): phones, face features
+  // and the jaw's opening under every frame; not known in graphs of format 11 and older.
+  FaceSpeech face_speech;
 
   int frame_count() const { return motion.frame_count; }
   bool has_speech() const { return speech_dims > 0; }

@@ -1,4 +1,5 @@
-// Praat TextGrid transcripts (long and short text formats): the words tier, or the tier asked for.
+// Praat TextGrid transcripts (long and short text formats): the words tier, or the tier asked for;
+// and the phones tier when there is one (text/phones.h).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -8,6 +9,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/strings.h"
+#include "text/phones.h"
 #include "text/text_file.h"
 #include "text/transcript.h"
 #include "text/transcript_util.h"
@@ -312,23 +314,11 @@ const Tier* default_tier(const std::vector<Tier>& tiers, const std::string& path
               " interval tier to read instead (tiers found: " + tier_list(tiers) + "); choose one with --tier NAME");
 }
 
-}  // namespace
-
-std::vector<Word> read_textgrid(const std::string& path, const std::string& tier) {
-  return parse_textgrid(read_file_bytes(path), path, tier);
-}
-
-std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& path, const std::string& tier) {
-  const std::string text = detail::decode_to_utf8(bytes, path);
-  std::vector<Tier> tiers = TextGridParser(text, path).parse();
-  const Tier* chosen = tier.empty() ? default_tier(tiers, path) : named_tier(tiers, tier, path);
-  if (chosen->cls != "IntervalTier")
-    throw Error(
-        error_at_line(path, chosen->line,
-                      "the tier " + quote_field(chosen->name) + " is a " + chosen->cls + ", not an IntervalTier"));
-
+// The words of an interval tier: its intervals with text, checked (an end before its start, a
+// negative start), sorted by start.
+std::vector<Word> tier_words(const Tier& chosen, const std::string& path) {
   std::vector<Word> words;
-  for (const Interval& iv : chosen->intervals) {
+  for (const Interval& iv : chosen.intervals) {
     if (iv.xmax < iv.xmin)
       throw Error(error_at_line(path, iv.line,
                                 "interval " + quote_field(iv.text) + " ends (" + format_seconds(iv.xmax) +
@@ -342,6 +332,53 @@ std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& pa
   }
   sort_words(words);
   return words;
+}
+
+// The phones tier: named "phones", else the one interval tier whose name ends in "phones"; null
+// when there is none.
+const Tier* phones_tier(const std::vector<Tier>& tiers) {
+  for (const Tier& t : tiers)
+    if (t.cls == "IntervalTier" && ascii_lower(trim(t.name)) == "phones") return &t;
+  const Tier* found = nullptr;
+  int n = 0;
+  for (const Tier& t : tiers) {
+    const std::string name = ascii_lower(trim(t.name));
+    if (t.cls == "IntervalTier" && name.size() > 6 && name.compare(name.size() - 6, 6, "phones") == 0) {
+      found = &t;
+      ++n;
+    }
+  }
+  return n == 1 ? found : nullptr;
+}
+
+}  // namespace
+
+std::vector<Phone> parse_textgrid_phones(const std::string& bytes, const std::string& path) {
+  const std::string text = detail::decode_to_utf8(bytes, path);
+  const std::vector<Tier> tiers = TextGridParser(text, path).parse();
+  std::vector<Phone> phones;
+  const Tier* tier = phones_tier(tiers);
+  if (!tier) return phones;
+  for (Word& w : tier_words(*tier, path)) {
+    std::string symbol = phone_symbol(w.text);
+    if (!symbol.empty()) phones.push_back({w.start, w.end, std::move(symbol)});
+  }
+  return phones;
+}
+
+std::vector<Word> read_textgrid(const std::string& path, const std::string& tier) {
+  return parse_textgrid(read_file_bytes(path), path, tier);
+}
+
+std::vector<Word> parse_textgrid(const std::string& bytes, const std::string& path, const std::string& tier) {
+  const std::string text = detail::decode_to_utf8(bytes, path);
+  std::vector<Tier> tiers = TextGridParser(text, path).parse();
+  const Tier* chosen = tier.empty() ? default_tier(tiers, path) : named_tier(tiers, tier, path);
+  if (chosen->cls != "IntervalTier")
+    throw Error(
+        error_at_line(path, chosen->line,
+                      "the tier " + quote_field(chosen->name) + " is a " + chosen->cls + ", not an IntervalTier"));
+  return tier_words(*chosen, path);
 }
 
 }  // namespace gmg::text

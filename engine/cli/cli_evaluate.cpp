@@ -24,11 +24,9 @@ struct EvaluateArgs {
 void run_evaluate(EvaluateArgs& a) {
   a.options.metrics.hist_bins = *enum_from_name(kHistogramBinsNames, a.bins);
   const EvaluateInputs& in = a.inputs;
-  std::vector<NamedFile> inputs = {{"--generated", in.generated},
-                                   {"--truth", in.truth},
-                                   {"--audio", in.audio},
-                                   {"--report", in.report},
-                                   {"--reference", in.reference}};
+  std::vector<NamedFile> inputs = {{"--generated", in.generated}, {"--truth", in.truth},
+                                   {"--audio", in.audio},         {"--report", in.report},
+                                   {"--reference", in.reference}, {"--transcript", in.transcript}};
   for (const std::string& o : in.other_audio) inputs.push_back({"--other-audio", o});
   if (!in.other_audio.empty() && in.audio.empty()) throw UsageError("--other-audio needs --audio");
   check_output_extensions({{"-o", a.output, kJsonExtensions}, {"--plot", in.plot, kPlotExtensions}});
@@ -55,6 +53,8 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--other-audio", in.other_audio,
                   "other speech (repeatable): every sync metric is also scored against it, as GENEA pairs motion with "
                   "mismatched speech; lift = own speech minus the mean over these");
+  cmd->add_option("--transcript", in.transcript,
+                  "the speech's TextGrid with a phones tier (the face's viseme contrast)");
   cmd->add_option("--report", in.report, "the reenactment report (failures, fallbacks, transitions, junctions)");
   cmd->add_option("--reference", in.reference,
                   "the reference capture, BVH or graph (.gmg): jump threshold, and ratios when there is no truth");

@@ -302,6 +302,34 @@ const std::vector<Accessor>& accessors() {  // NOLINT(readability-function-size)
       int_key("smooth_window", "Savitzky-Golay window for the locked joints' roll (odd)", &Config::cleanup,
               &CleanupParams::smooth_window, 3, 255),
       int_key("smooth_order", "Savitzky-Golay polynomial order", &Config::cleanup, &CleanupParams::smooth_order, 0, 15),
+      // The face track (engine/face/params.h).
+      enum_key("face_mode", "the jaw and expressions follow the new speech (speech) or the body's path (body)",
+               &Config::face, &FaceParams::mode, kFaceModeNames),
+      int_key("face_candidates", "face track: reference stretches kept per unit of the new speech", &Config::face,
+              &FaceParams::candidates, 1, 500),
+      int_key("face_unit_frames", "face track: frames per unit of speech without phones", &Config::face,
+              &FaceParams::unit_frames, 1, 60),
+      number_key("face_silence_unit_max_s",
+                 "face track: longest pause between phones played as one unit, seconds [0.05, 10]", &Config::face,
+                 &FaceParams::silence_unit_max_s),
+      number_key("face_phone_weight", "face track: cost of a reference phone of another symbol [0, 100]", &Config::face,
+                 &FaceParams::phone_weight),
+      number_key("face_context_weight", "face track: cost of other neighbouring phones [0, 100]", &Config::face,
+                 &FaceParams::context_weight),
+      number_key("face_duration_weight", "face track: cost of |log| of the duration ratio [0, 100]", &Config::face,
+                 &FaceParams::duration_weight),
+      number_key("face_audio_weight", "face track: cost of sounding unlike the new speech [0, 100]", &Config::face,
+                 &FaceParams::audio_weight),
+      number_key("face_spectrum_weight", "face track: weight of voicing and spectrum against loudness [0, 100]",
+                 &Config::face, &FaceParams::spectrum_weight),
+      number_key("face_jaw_weight", "face track: cost of a jaw unlike the one the speech predicts [0, 100]",
+                 &Config::face, &FaceParams::jaw_weight),
+      number_key("face_join_weight", "face track: weight of a join's cost [0, 100]", &Config::face,
+                 &FaceParams::join_weight),
+      number_key("face_join_cost", "face track: cost of any join, beside the faces' difference [0, 100]", &Config::face,
+                 &FaceParams::join_cost),
+      number_key("face_crossfade_s", "face track: seconds a join cross-fades either side [0, 1]", &Config::face,
+                 &FaceParams::crossfade_s),
       {{"seed", "seed of every random choice [0 to 18446744073709551615]"},
        [](Config& c, const std::string& v) {
          c.seed = parse_whole<std::uint64_t>("seed", v, 0, std::numeric_limits<std::uint64_t>::max());
@@ -463,6 +491,7 @@ void config_validate(const Config& c) {
   search_params_validate(c.search);
   cleanup_params_validate(c.cleanup);
   blend_params_validate(c.blend);
+  face_params_validate(c.face);
 }
 
 }  // namespace gmg

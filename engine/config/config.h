@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/assemble/params.h"
+#include "engine/face/params.h"
 #include "engine/motion/cleanup.h"
 #include "graph/params.h"
 #include "search/params.h"
@@ -29,6 +30,7 @@ struct Config {
   SearchParams search;
   BlendParams blend;
   CleanupParams cleanup;
+  FaceParams face;
   std::uint64_t seed = 20231009;  // default seed (the paper's conference date)
 };
 

@@ -19,15 +19,17 @@
 
 namespace gmg {
 
-std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton) {
+std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton, SmplxBody* out_body) {
   std::vector<Motion> clips;
   if (ends_with_ci(path, ".gmg")) {
     const MotionGraph g = graph_load(path);
+    if (out_body) *out_body = g.body;
     for (const ClipInfo& c : g.clips)
       clips.push_back(motion_slice(g.motion, c.first_frame, c.first_frame + c.frame_count));
     g.check_unchanged();
   } else {
     clips.push_back(motion_read_y_up(path, skeleton));
+    if (out_body && ends_with_ci(path, ".npz")) motion_read(path, skeleton, out_body);
   }
   return clips;
 }
@@ -62,6 +64,11 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   // (a graph's motion is Y-up already).
   l.generated = motion_read_y_up(in.generated, in.skeleton);
   l.generated_name = in.generated;
+  if (ends_with_ci(in.generated, ".npz")) motion_read(in.generated, in.skeleton, &l.generated_body);
+  if (!in.transcript.empty()) {
+    l.mouth = mouth_spans(in.transcript);
+    l.has_mouth = true;
+  }
   if (!in.truth.empty()) {
     l.truth = motion_read_y_up(in.truth, in.skeleton);
     l.truth_name = in.truth;
@@ -73,7 +80,7 @@ EvaluateResult evaluate_files(const EvaluateInputs& in, const EvaluateOptions& o
   for (const std::string& path : in.other_audio)
     l.other_audio.push_back(read_evaluated_speech(path, in.allow_silence, l.warnings));
   l.other_audio_names = in.other_audio;
-  if (!in.reference.empty()) l.reference = read_reference_clips(in.reference, in.skeleton);
+  if (!in.reference.empty()) l.reference = read_reference_clips(in.reference, in.skeleton, &l.reference_body);
   l.reference_name = in.reference;
   if (!in.report.empty()) {
     l.report = read_json_file(in.report);
@@ -134,6 +141,7 @@ EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options
   if (has_report) inputs["report"] = in.report_name;
   result.json["inputs"] = inputs;
   for (auto it = metrics.begin(); it != metrics.end(); ++it) result.json[it.key()] = it.value();
+  if (nlohmann::ordered_json face = face_evaluation(generated, in); !face.is_null()) result.json["face"] = face;
   if (has_report) {
     result.json["failures"] = facts.totals["failures"];
     if (facts.totals.contains("fallbacks")) result.json["fallbacks"] = facts.totals["fallbacks"];

@@ -9,7 +9,9 @@
 
 #include "audio/wav.h"
 #include "engine/metrics/evaluate.h"
+#include "engine/metrics/face_metrics.h"
 #include "engine/motion/motion.h"
+#include "engine/motion/npz.h"
 
 namespace gmg {
 
@@ -21,6 +23,7 @@ struct EvaluateInputs {
   std::vector<std::string> other_audio;  // other speech: the mismatched-speech control
   std::string report;                    // reenactment report JSON; "" = skip failures, fallbacks and transitions
   std::string reference;                 // the reference capture: a BVH or a graph (.gmg); "" = none
+  std::string transcript;                // the speech's TextGrid with phones (viseme contrast); "" = none
   bool trim = false;  // cut the longer of generated and truth to the shorter (a warning says by how much)
   std::string plot;   // write a picture (.png or .svg); "" = none
   // Take speech that cannot be speech as it is (audio/speech_check.h: shorter than 0.5 s or
@@ -53,6 +56,12 @@ struct EvaluateLoaded {
   std::vector<std::string> other_audio_names;  // one per other_audio
   std::vector<Motion> reference;               // the reference's clips
   std::string reference_name;
+  // The face (engine/metrics/face_metrics.h): the generated motion's expressions, the reference's,
+  // and the phones the viseme contrast reads (has_mouth: a transcript with phones was given).
+  SmplxBody generated_body;
+  SmplxBody reference_body;
+  std::vector<MouthSpan> mouth;
+  bool has_mouth = false;
   nlohmann::json report;  // a reenactment report
   std::string report_name;
   bool trim = false;
@@ -67,7 +76,17 @@ EvaluateResult evaluate_loaded(EvaluateLoaded in, const EvaluateOptions& options
 // unless allow_silence.
 audio::Audio read_evaluated_speech(const std::string& path, bool allow_silence, std::vector<std::string>& warnings);
 
-// The reference clips evaluate_files reads from `path`: a graph's clips (.gmg), else one motion.
-std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton);
+// The reference clips evaluate_files reads from `path`: a graph's clips (.gmg), else one motion;
+// with out_body, the reference's SMPL-X body too (a graph's, or an .npz's).
+std::vector<Motion> read_reference_clips(const std::string& path, const std::string& skeleton,
+                                         SmplxBody* out_body = nullptr);
+
+// The open vowels and bilabials of a transcript's phones tier (text/phones.h); none without one.
+std::vector<MouthSpan> mouth_spans(const std::string& transcript);
+
+// "face": the jaw-energy correlation (with the mismatched-speech control when other audio is
+// given), the viseme contrast (with phones) and the share of frames whose expressions leave the
+// reference's range (with a reference face); null when the motion has no jaw and no face.
+nlohmann::ordered_json face_evaluation(const Motion& generated, const EvaluateLoaded& in);
 
 }  // namespace gmg

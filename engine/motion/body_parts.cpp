@@ -52,6 +52,19 @@ std::vector<int> wrist_joints(const Skeleton& skeleton) {
   return out;
 }
 
+int jaw_joint(const Skeleton& skeleton) {
+  int found = -1, count = 0;
+  for (int j = 0; j < skeleton.joint_count(); ++j) {
+    const std::string name = ascii_lower(skeleton.joints[static_cast<std::size_t>(j)].name);
+    if (name == "jaw") return j;
+    if (name.find("jaw") != std::string::npos) {
+      found = j;
+      ++count;
+    }
+  }
+  return count == 1 ? found : -1;
+}
+
 std::vector<int> upper_body_joints(const Skeleton& s) {
   std::vector<int> ends = wrist_joints(s);
   auto names_head = [](const std::string& name) { return ascii_lower(name).find("head") != std::string::npos; };

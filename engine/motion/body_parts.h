@@ -22,6 +22,11 @@ std::vector<Leg> find_legs(const Skeleton& skeleton);
 // Joint indices of the wrists: names containing "wrist", else names ending in "hand".
 std::vector<int> wrist_joints(const Skeleton& skeleton);
 
+// The jaw: the joint named "jaw" (ASCII case-insensitive: SMPL-X's joint 22), else the one joint
+// whose name holds "jaw" (a rig's "Jaw", "b_jaw"); -1 when there is none or several. Its local
+// rotation opens the mouth.
+int jaw_joint(const Skeleton& skeleton);
+
 // The upper body, ascending: every joint on the chains from the root to the wrists and to the
 // head (the topmost joint whose name holds "head"), without the root itself. So the spine, neck,
 // head, collars, shoulders, elbows and wrists, but no fingers, face or legs: as EMAGE's beat

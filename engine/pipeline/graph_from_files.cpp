@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/parallel.h"
+#include "engine/face/reference_speech.h"
 #include "engine/motion/cleanup.h"
 #include "engine/motion/motion_file.h"
 #include "engine/motion/up_axis.h"
@@ -30,10 +31,10 @@ std::string seconds_text(double s) {
 // A reference clip's motion and analysed speech as the graph takes them: the motion cleaned up
 // (config.cleanup), the events on its frame grid; out_warnings gets the speech's warnings and one
 // when the speech (`speech_name`) and the motion (`name`) last more than
-// kMaxReferenceDurationMismatchS apart.
+// kMaxReferenceDurationMismatchS apart; out_face what the face track keeps of the speech.
 ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& config, const text::Lexicon& lexicon,
-                       const std::string& name, const std::string& speech_name,
-                       std::vector<std::string>& out_warnings) {
+                       const std::string& name, const std::string& speech_name, std::vector<std::string>& out_warnings,
+                       ClipFaceSpeech& out_face) {
   ClipEvents in;
   in.name = name;
   in.motion = std::move(motion);
@@ -53,6 +54,8 @@ ClipEvents clip_events(Motion motion, const SpeechTimes& times, const Config& co
   in.keyword_frames = ev.keyword_frames;
   in.speech = ev.features.values;
   in.speech_dims = audio::SpeechFeatures::kDims;
+  out_face.features = ev.face_features.values;
+  out_face.phones = ev.phones;
   return in;
 }
 
@@ -76,13 +79,13 @@ bool small_enough_alongside(const std::string& a, const std::string& b) {
 // before the motion is read. Either way a motion that cannot be opened is reported before the long
 // analysis, and a speech error before a motion error.
 ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const text::Lexicon& lexicon, bool alongside,
-                          SmplxBody& out_body, std::vector<std::string>& out_warnings) {
+                          SmplxBody& out_body, std::vector<std::string>& out_warnings, ClipFaceSpeech& out_face) {
   check_readable_file(c.motion);
   if (!c.skeleton.empty()) check_readable_file(c.skeleton);
   if (!alongside || !small_enough_alongside(c.speech.audio, c.motion)) {
     const SpeechTimes times = speech_times(c.speech, config.graph);
     return clip_events(motion_read(c.motion, c.skeleton, &out_body), times, config, lexicon, c.motion, c.speech.audio,
-                       out_warnings);
+                       out_warnings, out_face);
   }
   // The speech on a second thread, the motion on this one: the motion's many small allocations stay
   // in this thread's heap (a second thread's would start a heap of its own and fault its pages in),
@@ -105,7 +108,7 @@ ClipEvents read_reference(const ReferenceFiles& c, const Config& config, const t
   speech.join();
   if (speech_error) std::rethrow_exception(speech_error);
   if (motion_error) std::rethrow_exception(motion_error);
-  return clip_events(std::move(motion), times, config, lexicon, c.motion, c.speech.audio, out_warnings);
+  return clip_events(std::move(motion), times, config, lexicon, c.motion, c.speech.audio, out_warnings, out_face);
 }
 
 // The graph's body from its clips': the face when every clip has one of the same size (a face
@@ -144,6 +147,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   const std::string what = clips.empty() ? std::string("graph") : clips.front().motion;
   GraphBuild build(config.graph, spill_folder);
   std::vector<SmplxBody> bodies(clips.size());
+  std::vector<ClipFaceSpeech> faces(clips.size());
   const int workers = worker_count(jobs, clips.size());
   // Cores left over by a wave of clips (one clip on two cores): each clip reads its motion alongside
   // its speech.
@@ -161,7 +165,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
       std::exception_ptr error;  // a clip that fails counts as read too; parallel_for reports the first
       try {
         inputs[i] = naming_memory_errors(clip.motion, "reading the reference clip", [&] {
-          return read_reference(clip, config, lexicon, alongside, bodies[first + i], warnings[i]);
+          return read_reference(clip, config, lexicon, alongside, bodies[first + i], warnings[i], faces[first + i]);
         });
       } catch (...) {
         error = std::current_exception();
@@ -184,6 +188,7 @@ MotionGraph graph_build_from_files(const std::vector<ReferenceFiles>& clips, con
   }
   MotionGraph g = naming_memory_errors(what, "building the graph", [&] { return build.finish(progress); });
   g.body = join_bodies(bodies);
+  g.face_speech = face_speech_of(g, faces);
   return g;
 }
 
@@ -192,7 +197,9 @@ MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Confi
   const text::Lexicon lexicon = lexicon_for(config.graph);
   std::vector<ClipEvents> inputs;
   std::vector<SmplxBody> bodies;
+  std::vector<ClipFaceSpeech> faces(clips.size());
   inputs.reserve(clips.size());
+  std::size_t index = 0;
   for (ReferenceClip& c : clips) {
     check_audio_samples(c.sound, c.name);
     if (c.has_words) check_words(c.words, c.name);
@@ -204,14 +211,16 @@ MotionGraph graph_build_from_clips(std::vector<ReferenceClip> clips, const Confi
       const SpeechTimes times =
           speech_times_of(c.sound, c.has_words ? &c.words : nullptr, c.name, config.graph, c.allow_silence);
       std::vector<std::string> warnings;  // the arrays' caller has them in hand: none is news
-      return clip_events(std::move(c.motion), times, config, lexicon, c.name, c.name, warnings);
+      return clip_events(std::move(c.motion), times, config, lexicon, c.name, c.name, warnings, faces[index]);
     }));
+    ++index;
     bodies.push_back(std::move(c.body));
   }
   const std::string what = clips.empty() ? std::string("graph") : clips.front().name;
   MotionGraph g =
       naming_memory_errors(what, "building the graph", [&] { return graph_build(std::move(inputs), config.graph); });
   g.body = join_bodies(bodies);
+  g.face_speech = face_speech_of(g, faces);
   return g;
 }
 

@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/limits.h"
 #include "engine/core/strings.h"
+#include "engine/face/face_track.h"
 #include "engine/metrics/evaluate.h"
 #include "engine/pipeline/lower_body.h"
 #include "engine/pipeline/report.h"
@@ -60,10 +61,14 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
   // A pin plays the reference's stretch, joined within 0.2 s of its ends.
   if (!pins.empty()) apply_pins(r.motion, g, pins, static_cast<int>(std::lround(kPinSettleS * g.motion.fps)));
   motion_from_y_up(r.motion, g.up);  // the output in the reference's own up axis
+  r.body = assemble_body(g, r.plan, assembly_params(config));
+  // After the body's planning, and drawing no random numbers: the body is the same with either face.
+  const FaceTrack face = face_track(g, events.face_features.values, &events.phones, events.total_frames, config.face);
+  apply_face_track(g, face, r.motion, r.body);
+  // A kept range keeps the previous output whole, its face and jaw included.
   if (control.keep)
     apply_keep(r.motion, *control.keep, control.ranges, g, lower.layers, blend.spine_follow,
                blend.halflife_s * g.motion.fps);
-  r.body = assemble_body(g, r.plan, assembly_params(config));
   if (control.keep_body) apply_keep_face(r.body, *control.keep_body, control.ranges, blend.halflife_s * g.motion.fps);
   g.check_unchanged();  // a graph file cut short or rewritten meanwhile gave zeros or other values
 
@@ -73,6 +78,7 @@ Reenactment reenact_events(const MotionGraph& g, const SpeechEvents& events, con
     r.report["body"] = std::move(body);
   if (nlohmann::ordered_json legs = lower_body_report(g.motion.skeleton, lower); !legs.is_null())
     r.report["lower_body"] = std::move(legs);
+  if (r.report.contains("body") || !face.sources.empty()) r.report["face_track"] = face_track_report(face);
   control_report(r.report, control.ranges, events.total_frames, control.keep != nullptr, pins);
   r.warnings = events.warnings;
   return r;

@@ -21,9 +21,11 @@ namespace gmg {
 
 struct Reenactment {
   Motion motion;  // exactly events.total_frames frames, in the graph's skeleton
-  // The graph's SMPL-X body (shape, gender, model) with the face played along the motion: each
-  // output frame has the reference face of the source time it plays, blended through
-  // transitions like the motion (engine/assemble/channels.h); no face when the graph has none.
+  // The graph's SMPL-X body (shape, gender, model) with its face: by default the face track of the
+  // new speech (engine/face/face_track.h, which also drives a jaw joint of the motion); with
+  // face_mode=body, or a graph without face speech, the reference face of the source time each
+  // output frame plays, blended through transitions like the motion (engine/assemble/channels.h);
+  // no face when the graph has none.
   SmplxBody body;
   Plan plan;
   nlohmann::ordered_json report;

@@ -51,6 +51,8 @@ SpeechEvents speech_events_on_grid(const SpeechTimes& times, double fps, int fra
   if (ev.total_frames < 1) throw Error(times.name + ": audio is shorter than one motion frame");
   ev.onset_frames = audio::onset_motion_frames(times.onsets, fps, ev.total_frames);
   ev.features = audio::speech_features(times.energy, times.onsets.envelope, fps, ev.total_frames);
+  ev.face_features = audio::face_features(times.face_audio, times.energy, fps, ev.total_frames);
+  ev.phones = times.phones;
   ev.warnings = times.warnings;
   if (times.has_words) {
     ev.words = static_cast<int>(times.words.size());
@@ -75,7 +77,9 @@ SpeechTimes speech_times_of(const audio::Audio& sound, const std::vector<text::W
         audio::speech_onset_problem(sound.duration(), onsets.onset_frames.size(), params.min_onset_strength);
     if (!problem.empty()) throw Error(audio::speech_refusal(name, problem, {}));
   }
-  return times_of(std::move(onsets), std::move(energy), sound.duration(), words, name);
+  SpeechTimes t = times_of(std::move(onsets), std::move(energy), sound.duration(), words, name);
+  t.face_audio = audio::face_audio(sound);
+  return t;
 }
 
 SpeechEvents speech_events(const audio::Audio& sound, const std::vector<text::Word>* words, const std::string& name,
@@ -122,10 +126,15 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
     if (!problem.empty()) throw Error(audio::speech_refusal(files.audio, problem, warnings));
   }
   std::vector<text::Word> words;
-  if (!files.transcript.empty()) words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
+  std::vector<text::Phone> phones;
+  if (!files.transcript.empty()) {
+    words = text::read_transcript(files.transcript, files.transcript_format, files.tier);
+    phones = text::read_phones(files.transcript, files.transcript_format);
+  }
   const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
   // Checked before the long onset analysis: a transcript of another recording fails at once.
   if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
+  audio::FaceAudio face = audio::face_audio(sound);
   audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
   if (!files.allow_silence) {
     const std::string problem =
@@ -135,6 +144,8 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
   SpeechTimes t =
       times_of(std::move(onsets), std::move(energy), duration_s, files.transcript.empty() ? nullptr : &words, name);
   t.warnings = std::move(warnings);
+  t.face_audio = std::move(face);
+  t.phones = std::move(phones);
   return t;
 }
 

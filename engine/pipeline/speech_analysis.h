@@ -6,11 +6,13 @@
 #include <utility>
 #include <vector>
 
+#include "audio/face_features.h"
 #include "audio/onset.h"
 #include "audio/speech_features.h"
 #include "audio/wav.h"
 #include "graph/params.h"
 #include "text/keywords.h"
+#include "text/phones.h"
 #include "text/transcript.h"
 
 namespace gmg {
@@ -34,6 +36,8 @@ struct SpeechEvents {
   std::vector<std::pair<int, std::string>> keyword_frames;  // ascending, in [0, total_frames)
   int words = 0;                                            // transcript words read
   audio::SpeechFeatures features;                           // total_frames frames
+  audio::FaceFeatures face_features;                        // total_frames frames (engine/face)
+  std::vector<text::Phone> phones;    // the transcript's phones tier, seconds; empty: none (text/phones.h)
   std::vector<std::string> warnings;  // what did not stop the analysis (decoder damage), naming the file
 };
 
@@ -53,6 +57,8 @@ struct SpeechTimes {
   audio::EnergyTrack energy;
   std::vector<text::Word> words;
   bool has_words = false;
+  audio::FaceAudio face_audio;        // what the face track compares speech by (audio/face_features.h)
+  std::vector<text::Phone> phones;    // the transcript's phones tier; empty: none
   std::string name;                   // labels errors: the transcript's file name, else the audio's
   std::vector<std::string> warnings;  // what did not stop the reading (decoder damage), naming the file
 };

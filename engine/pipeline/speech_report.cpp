@@ -36,6 +36,14 @@ nlohmann::ordered_json speech_report_json(const SpeechFiles& files, double fps, 
         keywords.push_back({{"time_s", k.time}, {"frame", frame}, {"keyword", k.keyword}});
     }
   out["keywords"] = keywords;
+  // The phones the face track plays (engine/face), from the transcript's phones tier.
+  nlohmann::ordered_json phones = nlohmann::ordered_json::array();
+  for (const text::Phone& p : times.phones)
+    phones.push_back({{"start_s", p.start},
+                      {"end_s", p.end},
+                      {"phone", p.symbol},
+                      {"viseme", std::string(enum_name(text::kVisemeNames, text::viseme_of(p.symbol)))}});
+  out["phones"] = phones;
   std::vector<float> loud, activity, pause;
   for (int f = 0; f < ev.features.frames(); ++f) {
     const float l = ev.features.values[static_cast<std::size_t>(f) * audio::SpeechFeatures::kDims];

@@ -3,11 +3,14 @@
 // parameters and seed give the same bytes.
 #include <pybind11/stl.h>
 
+#include <algorithm>
+
 #include "audio/audio_file.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/evaluate/evaluate_files.h"
+#include "engine/metrics/face_metrics.h"
 #include "engine/motion/motion_file.h"
 #include "engine/python/python_types.h"
 #include "graph/graph_io.h"
@@ -484,6 +487,16 @@ void bind_reenactment(py::module_& m) {
       .def_property_readonly("expressions",
                              [](const py::object& r) -> py::object { return r.attr("motion").attr("expressions"); })
       .def_property_readonly("betas", [](const py::object& r) -> py::object { return r.attr("motion").attr("betas"); })
+      .def_property_readonly(
+          "jaw",
+          [](const PyReenactment& r) -> py::object {
+            const std::vector<double> jaw = jaw_angles(r.motion.motion);
+            if (jaw.empty()) return py::none();
+            py::array_t<double> out(static_cast<py::ssize_t>(jaw.size()));
+            std::copy(jaw.begin(), jaw.end(), out.mutable_data());
+            return std::move(out);
+          },
+          "the jaw's opening per frame (radians; the face track's, like expressions), or None without a jaw joint")
       .def(
           "write",
           [](const PyReenactment& r, const py::object& path, const std::string& npz_dtype) {

@@ -236,8 +236,8 @@ TEST(ConfigKeys, EveryWholeNumberKeyHasADocumentedRange) {
   }
   // l_cn, l_pn, max_transitions, candidates_per_transition, exact_frames, ann_checks, l_npaths, l_feat,
   // retries, merge_below, reuse_cap_plays, ignore_rounds, start_candidates, l_blend, beat_shift, smooth_window,
-  // smooth_order
-  EXPECT_EQ(checked, 17);
+  // smooth_order, face_candidates, face_unit_frames
+  EXPECT_EQ(checked, 19);
   Config c;
   EXPECT_EQ(error_of([&] { config_set(c, "l_npaths", "1000000000"); }),
             "config key 'l_npaths': 1000000000 is out of range (1 to 1000)");

@@ -63,39 +63,39 @@ TEST(GraphIo, LoadRejectsWrongDamagedAndTruncatedFiles) {
   flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x40);
   expect_error(flipped, "damaged");
   std::string version = bytes;
-  version[8] = 12;
-  expect_error(version, "version 12");
+  version[8] = 13;
+  expect_error(version, "version 13");
   // Files of the earlier formats (3: no key poses, unaligned arrays; 4: no body; 5: no reference
   // facts; 6: another checksum) are refused before anything else is read, with the advice to
   // rebuild them.
   for (char old : {3, 4, 5, 6}) {
     version[8] = old;
     expect_error(version, std::string("graph file format version ") + char('0' + old) +
-                              ", this gmg reads versions 7 to 11: rebuild it with 'gmg build'");
+                              ", this gmg reads versions 7 to 12: rebuild it with 'gmg build'");
   }
 }
 
-// A format 11 file whose version field says 10 (a version this gmg reads) fails a field's check as
+// A format 12 file whose version field says 10 (a version this gmg reads) fails a field's check as
 // format 10 reads it; the error says which version it read the file as and which versions it reads,
-// so a damaged version field is not taken for damage elsewhere. A format 11 file's error has no
+// so a damaged version field is not taken for damage elsewhere. A format 12 file's error has no
 // such note.
 TEST(GraphIo, AnOlderVersionFieldIsNamedWhenTheFileDoesNotReadAsThatVersion) {
   gmg::testing::TempDir dir;
   const std::string path = dir.file("g.gmg");
   graph_save(path, two_clip_graph());
   std::string bytes = read_file_bytes(path);
-  ASSERT_EQ(bytes[8], 11);
+  ASSERT_EQ(bytes[8], 12);
   bytes[8] = 10;
   gmg::testing::write_text(path, bytes);
   const std::string error = gmg::testing::error_of([&] { graph_load(path); });
   EXPECT_EQ(error.rfind(path + ": byte ", 0), 0u) << error;
   EXPECT_NE(error.find(": damaged graph file: "), std::string::npos) << error;
-  const std::string note = " (read as format version 10, which its header gives; this gmg reads versions 7 to 11)";
+  const std::string note = " (read as format version 10, which its header gives; this gmg reads versions 7 to 12)";
   ASSERT_GE(error.size(), note.size());
   EXPECT_EQ(error.substr(error.size() - note.size()), note) << error;
 
-  // The same damage read as format 11: a field's check fails without the note.
-  bytes[8] = 11;
+  // The same damage read as format 12: a field's check fails without the note.
+  bytes[8] = 12;
   const std::size_t flags = bytes.size() / 2;  // in the padding before the key poses
   bytes[flags] = static_cast<char>(bytes[flags] ^ 0x40);
   gmg::testing::write_text(path, bytes);

@@ -155,6 +155,9 @@ TEST(PipelineRealData, Beat2NpzOutputKeepsTransBetasAndTheFaceWhicheverWayTheGra
   const std::string bvh = d + "2_scott_0_1_1.bvh", npz = d + "2_scott_0_1_1.npz";
   Config cfg;
   cfg.seed = 7;
+  // The face along the body's path (face_mode=body); the face track of the new speech, the
+  // default, is tests/pipeline/test_face_real_data.cpp's.
+  cfg.face.mode = FaceMode::Body;
   const MotionGraph from_bvh =
       graph_build_from_files({{bvh, {d + "2_scott_0_1_1.wav", d + "2_scott_0_1_1.TextGrid"}}}, cfg);
   const MotionGraph from_npz =

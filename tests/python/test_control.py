@@ -88,13 +88,23 @@ def test_beat2_range_and_pin_targets(beat2, tmp_path):
             "--audio", beat2 / "2_scott_0_1_1.wav", "--transcript", beat2 / "2_scott_0_1_1.TextGrid",
             "-o", tmp_path / "face.gmg")
     face = ["--graph", tmp_path / "face.gmg"] + new[2:]
-    run_gmg("reenact", *face, "--seed", "1", "-o", tmp_path / "A.npz")
-    run_gmg("reenact", *face, "--keep", tmp_path / "A.npz", "--range", "20:30", "--seed", "2", "-o", tmp_path / "B.npz")
+    # The face along the body's path is kept, and regenerated in the range, with the body.
+    body_face = face + ["--set", "face_mode=body"]
+    run_gmg("reenact", *body_face, "--seed", "1", "-o", tmp_path / "A.npz")
+    run_gmg("reenact", *body_face, "--keep", tmp_path / "A.npz", "--range", "20:30", "--seed", "2",
+            "-o", tmp_path / "B.npz")
     with np.load(tmp_path / "A.npz") as na, np.load(tmp_path / "B.npz") as nb:
         for key in ("poses", "trans", "expressions"):
             assert np.array_equal(na[key][:600], nb[key][:600]) and np.array_equal(na[key][900:], nb[key][900:]), key
         assert not np.array_equal(na["poses"][600:900], nb["poses"][600:900])
         assert not np.array_equal(na["expressions"][600:900], nb["expressions"][600:900])
+    # The face track (the default) follows the speech, not the seed: the range gets the same face.
+    run_gmg("reenact", *face, "--seed", "1", "-o", tmp_path / "C.npz")
+    run_gmg("reenact", *face, "--keep", tmp_path / "C.npz", "--range", "20:30", "--seed", "2", "-o", tmp_path / "D.npz")
+    with np.load(tmp_path / "C.npz") as nc, np.load(tmp_path / "D.npz") as nd:
+        assert np.array_equal(nc["trans"][:600], nd["trans"][:600])
+        assert not np.array_equal(nc["poses"][600:900], nd["poses"][600:900])
+        assert np.array_equal(nc["expressions"], nd["expressions"])
 
     run_gmg("reenact", *new, "--pin", "40=27:28.6", "--seed", "1", "-o", tmp_path / "P.bvh")
     p = gmg.read_motion(tmp_path / "P.bvh")
