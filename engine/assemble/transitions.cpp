@@ -209,6 +209,9 @@ Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, cons
                          (outside ? 1.0 : 0.5) * std::max(0.0, root_step_limit - std::hypot(d.x, d.z)));
       }
       if (c.run != clock[i - 1].run) {
+        // The last played frame's velocity, needed only here: computed at a transition rather than
+        // at every frame (its exponential maps were most of the assembly's time).
+        reader.velocity(clock[i - 1].time, clock[i - 1].rate, previous, previous_vel);
         old_source_next(reader, clock[i - 1], previous, previous_vel, old_pose, old_vel);
         reader.velocity(c.time, c.rate, dst, dst_vel);
         const glm::dvec3 shift = anchor_root && !anchor_feet.empty()
@@ -225,7 +228,6 @@ Motion assemble_inertialized(const Motion& source, const CaptureRuns& runs, cons
           dst.tr[k] + off.pos[k] + (j == 0 ? off.anchor : glm::dvec3(0.0));
     }
     previous = dst;
-    reader.velocity(c.time, c.rate, dst, previous_vel);
   }
   if (params.foot_lock) {
     const std::vector<Leg> legs = find_legs(source.skeleton);

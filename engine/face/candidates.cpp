@@ -5,6 +5,8 @@
 #include <map>
 #include <string>
 
+#include "text/phones.h"
+
 namespace gmg {
 namespace {
 
@@ -16,6 +18,16 @@ constexpr int kWindowStep = 3;
 // A phone unit's reference phones of other symbols of the same viseme join its own while it has
 // fewer than this many.
 constexpr std::size_t kMinSameSymbol = 4;
+
+// The visemes of a phone and of its neighbours.
+struct PhoneVisemes {
+  text::Viseme symbol, left, right;
+};
+
+template <typename Phone>
+PhoneVisemes visemes_of(const Phone& p) {
+  return {text::viseme_of(p.symbol), text::viseme_of(p.left), text::viseme_of(p.right)};
+}
 
 class TargetCost {
  public:
@@ -57,12 +69,16 @@ class TargetCost {
     return p_.audio_weight * std::sqrt(sound / n) + (t_.jaw.empty() ? 0.0 : p_.jaw_weight * jaw / n / r_.jaw_sd);
   }
 
-  // A phone unit's own terms: the phone, its neighbours and its length.
-  double phone_cost(const FaceUnit& u, const FacePhone& ref) const {
+  // A phone unit's own terms: the phone, its neighbours and its length (the visemes looked up once
+  // per phone: text::phone_difference's, without its search of the viseme table).
+  double phone_cost(const FaceUnit& u, const PhoneVisemes& uv, const FacePhone& ref, const PhoneVisemes& rv) const {
+    const auto differ = [](const std::string& a, text::Viseme va, const std::string& b, text::Viseme vb) {
+      return a == b ? 0 : va == vb ? 1 : 2;
+    };
     const double length = (ref.end - ref.start) / (u.end - u.start);
-    return p_.phone_weight * text::phone_difference(u.symbol, ref.symbol) +
+    return p_.phone_weight * differ(u.symbol, uv.symbol, ref.symbol, rv.symbol) +
            p_.context_weight * 0.5 *
-               (text::phone_difference(u.left, ref.left) + text::phone_difference(u.right, ref.right)) +
+               (differ(u.left, uv.left, ref.left, rv.left) + differ(u.right, uv.right, ref.right, rv.right)) +
            p_.duration_weight * std::abs(std::log(length));
   }
 
@@ -109,19 +125,23 @@ std::vector<std::vector<FaceCandidate>> face_candidates(const ReferenceFace& r, 
   const TargetCost cost(r, target, params);
   std::map<std::string, std::vector<int>> by_symbol;
   std::vector<std::vector<int>> by_viseme(text::kVisemeCount);
+  std::vector<PhoneVisemes> ref_visemes;
+  ref_visemes.reserve(r.phones.size());
   for (std::size_t i = 0; i < r.phones.size(); ++i) {
+    ref_visemes.push_back(visemes_of(r.phones[i]));
     by_symbol[r.phones[i].symbol].push_back(static_cast<int>(i));
-    by_viseme[static_cast<std::size_t>(text::viseme_of(r.phones[i].symbol))].push_back(static_cast<int>(i));
+    by_viseme[static_cast<std::size_t>(ref_visemes.back().symbol)].push_back(static_cast<int>(i));
   }
   std::vector<std::vector<FaceCandidate>> out;
   out.reserve(units.size());
   for (const FaceUnit& u : units) {
     std::vector<int> pool;
+    const PhoneVisemes uv = visemes_of(u);
     if (u.phone) {
       const auto it = by_symbol.find(u.symbol);
       if (it != by_symbol.end()) pool = it->second;
       if (pool.size() < kMinSameSymbol)
-        for (int i : by_viseme[static_cast<std::size_t>(text::viseme_of(u.symbol))])
+        for (int i : by_viseme[static_cast<std::size_t>(uv.symbol)])
           if (r.phones[static_cast<std::size_t>(i)].symbol != u.symbol) pool.push_back(i);
     }
     if (pool.empty()) {
@@ -133,7 +153,7 @@ std::vector<std::vector<FaceCandidate>> face_candidates(const ReferenceFace& r, 
     for (int i : pool) {
       const FacePhone& ph = r.phones[static_cast<std::size_t>(i)];
       FaceCandidate fc{ph.start, ph.end, ph.clip, 0.0};
-      fc.cost = cost.phone_cost(u, ph) + cost.speech_cost(u, fc, 0);
+      fc.cost = cost.phone_cost(u, uv, ph, ref_visemes[static_cast<std::size_t>(i)]) + cost.speech_cost(u, fc, 0);
       c.push_back(fc);
     }
     keep_best(c, params.candidates);
