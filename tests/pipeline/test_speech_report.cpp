@@ -57,6 +57,71 @@ TEST(SpeechReport, HoldsTheEventsAndFeaturesThePlannerUses) {
   EXPECT_EQ(rows.back().fields[0], "keyword");
 }
 
+// The phones the face track plays: a TextGrid's phones tier, symbols without their stress digits,
+// each with its viseme; none for a transcript without phones.
+TEST(SpeechReport, ListsThePhonesOfATextGridsPhonesTier) {
+  gmg::testing::TempDir dir;
+  SynthSpec spec;
+  spec.duration_s = 4.0;
+  spec.seed = 3;
+  synth_write(synth_speaker(spec), dir.path().string(), "s");
+  gmg::testing::write_text(dir.file("s.TextGrid"), R"(File type = "ooTextFile"
+Object class = "TextGrid"
+
+xmin = 0
+xmax = 4
+tiers? <exists>
+size = 2
+item []:
+    item [1]:
+        class = "IntervalTier"
+        name = "words"
+        xmin = 0
+        xmax = 4
+        intervals: size = 2
+        intervals [1]:
+            xmin = 0
+            xmax = 1.2
+            text = ""
+        intervals [2]:
+            xmin = 1.2
+            xmax = 1.5
+            text = "map"
+    item [2]:
+        class = "IntervalTier"
+        name = "phones"
+        xmin = 0
+        xmax = 4
+        intervals: size = 4
+        intervals [1]:
+            xmin = 0
+            xmax = 1.2
+            text = ""
+        intervals [2]:
+            xmin = 1.2
+            xmax = 1.3
+            text = "M"
+        intervals [3]:
+            xmin = 1.3
+            xmax = 1.42
+            text = "AE1"
+        intervals [4]:
+            xmin = 1.42
+            xmax = 1.5
+            text = "P"
+)");
+  const Config cfg;
+  const nlohmann::ordered_json r = speech_report_json({dir.file("s.wav"), dir.file("s.TextGrid")}, 30.0, cfg);
+  ASSERT_EQ(r["phones"].size(), 3u) << r["phones"].dump();
+  EXPECT_EQ(r["phones"][0]["phone"], "M");
+  EXPECT_EQ(r["phones"][0]["viseme"], "bilabial");
+  EXPECT_DOUBLE_EQ(r["phones"][0]["start_s"].get<double>(), 1.2);
+  EXPECT_EQ(r["phones"][1]["phone"], "AE");
+  EXPECT_EQ(r["phones"][1]["viseme"], "open vowel");
+  EXPECT_DOUBLE_EQ(r["phones"][2]["end_s"].get<double>(), 1.5);
+  EXPECT_TRUE(speech_report_json({dir.file("s.wav"), dir.file("s.tsv")}, 30.0, cfg)["phones"].empty());
+}
+
 TEST(SpeechReport, TheCommandWritesJsonOrCsvAndRefusesOtherNames) {
   gmg::testing::TempDir dir;
   SynthSpec spec;
