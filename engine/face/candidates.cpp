@@ -100,12 +100,16 @@ void keep_best(std::vector<FaceCandidate>& c, int k) {
   std::sort(c.begin(), c.end(), cheaper);
 }
 
+// `scratch` holds every stretch looked at (reused from unit to unit: growing a new list for each
+// window was half the audio-only track's time); the best params.candidates are returned.
 std::vector<FaceCandidate> window_candidates(const ReferenceFace& r, const FaceUnit& u, const TargetCost& cost,
-                                             const FaceParams& p) {
+                                             const FaceParams& p, std::vector<FaceCandidate>& scratch) {
   const double length = u.end - u.start;
   const int whole = std::max(1, static_cast<int>(std::ceil(length)));
   const int stride = std::max(kWindowStep, r.frames / kMaxWindowStarts);
-  std::vector<FaceCandidate> out;
+  std::vector<FaceCandidate>& out = scratch;
+  out.clear();
+  out.reserve(static_cast<std::size_t>(r.frames / stride + static_cast<int>(r.clip_first.size())));
   for (std::size_t c = 0; c < r.clip_first.size(); ++c) {
     const int first = r.clip_first[c], last = r.clip_end[c] - whole;
     for (int s = first; s <= last; s += stride) {
@@ -115,7 +119,7 @@ std::vector<FaceCandidate> window_candidates(const ReferenceFace& r, const FaceU
     }
   }
   keep_best(out, p.candidates);
-  return out;
+  return {out.begin(), out.end()};
 }
 
 }  // namespace
@@ -134,6 +138,7 @@ std::vector<std::vector<FaceCandidate>> face_candidates(const ReferenceFace& r, 
   }
   std::vector<std::vector<FaceCandidate>> out;
   out.reserve(units.size());
+  std::vector<FaceCandidate> scratch;
   for (const FaceUnit& u : units) {
     std::vector<int> pool;
     const PhoneVisemes uv = visemes_of(u);
@@ -145,7 +150,7 @@ std::vector<std::vector<FaceCandidate>> face_candidates(const ReferenceFace& r, 
           if (r.phones[static_cast<std::size_t>(i)].symbol != u.symbol) pool.push_back(i);
     }
     if (pool.empty()) {
-      out.push_back(window_candidates(r, u, cost, params));
+      out.push_back(window_candidates(r, u, cost, params, scratch));
       continue;
     }
     std::vector<FaceCandidate> c;
