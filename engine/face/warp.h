@@ -1,7 +1,8 @@
 // The reference times the face track plays at each output frame: each unit's stretch warped
-// linearly onto the unit's time (the new phone's length; kept on the stretch's own frames), and at a join between
-// stretches that do not follow each other in the reference a linear cross-fade from one to the other, over crossfade_s
-// either side of the join (at most half of either unit).
+// linearly onto the unit's time (the new phone's length; kept on the stretch's own frames), and at a
+// join between stretches that do not follow each other in the reference a linear cross-fade from
+// one to the other, each read on into its own reference context, over crossfade_s either side of
+// the join (at most half of either unit).
 #pragma once
 
 #include <vector>

@@ -83,13 +83,16 @@ TEST(FaceWarp, EachUnitIsWarpedOntoItsLengthAndCutsAreCrossFaded) {
   EXPECT_DOUBLE_EQ(s[0].w, 0.0);
   EXPECT_DOUBLE_EQ(s[1].a, 12.0);
   // Frame 3 is 1 frame before the cut at 4: weight of the next stretch 0.5 (1 - 1/1.5) = 1/6, read
-  // at 30 + (3 - 4) * 0.5 = 29.5, held at the stretch's first frame, 30.
+  // at 30 + (3 - 4) * 0.5 = 29.5, in the reference's own lead-in to that stretch.
   EXPECT_DOUBLE_EQ(s[3].a, 16.0);
-  EXPECT_DOUBLE_EQ(s[3].b, 30.0);
+  EXPECT_DOUBLE_EQ(s[3].b, 29.5);
   EXPECT_NEAR(s[3].w, 1.0 / 6.0, 1e-12);
   EXPECT_DOUBLE_EQ(s[4].a, 30.0);  // at the cut: half and half
-  EXPECT_DOUBLE_EQ(s[4].b, 17.0);  // 18 is past the first stretch's last frame
+  EXPECT_DOUBLE_EQ(s[4].b, 18.0);  // the first stretch read on past its last frame (17)
   EXPECT_DOUBLE_EQ(s[4].w, 0.5);
+  // Read on, the partner stays inside its clip: a stretch at the clip's first frame holds it.
+  const std::vector<FaceCandidate> at_start = {{10.0, 18.0, 0, 0.0}, {0.0, 4.0, 0, 0.0}};
+  EXPECT_DOUBLE_EQ(face_sources(r, units, at_start, 12, 1.5)[3].b, 0.0);
   EXPECT_DOUBLE_EQ(s[6].a, 31.0);
   EXPECT_DOUBLE_EQ(s[6].w, 0.0);
   EXPECT_DOUBLE_EQ(s[10].a, 33.0);
