@@ -3,8 +3,10 @@
 
 #include <filesystem>
 
+#include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/strings.h"
+#include "text/transcript_util.h"
 
 namespace gmg::text {
 
@@ -61,6 +63,15 @@ Viseme viseme_of(std::string_view symbol) {
 int phone_difference(std::string_view a, std::string_view b) {
   if (a == b) return 0;
   return viseme_of(a) == viseme_of(b) ? 1 : 2;
+}
+
+void check_phones_fit(const std::vector<Phone>& phones, double duration_s, const std::string& path,
+                      double tolerance_s) {
+  for (const Phone& p : phones)
+    if (p.end > duration_s + tolerance_s)
+      throw Error(path + ": the phones tier runs past the end of the audio: phone " + detail::quote_field(p.symbol) +
+                  " ends at " + detail::format_seconds(p.end) + " s but the audio lasts " +
+                  detail::format_seconds(duration_s) + " s (a transcript of another recording?)");
 }
 
 }  // namespace gmg::text

@@ -32,6 +32,11 @@ std::string phone_symbol(std::string_view label);
 // are optional, and the words are read as before. Errors (from the TextGrid reader) name the file
 // and line.
 std::vector<Phone> read_phones(const std::string& path, TranscriptFormat format = TranscriptFormat::Auto);
+
+// Throws gmg::Error naming `path` when some phone ends after duration_s + tolerance_s: the phones
+// tier runs past the end of the audio (as text/transcript.h check_transcript_fits for the words).
+void check_phones_fit(const std::vector<Phone>& phones, double duration_s, const std::string& path,
+                      double tolerance_s = 0.05);
 std::vector<Phone> parse_textgrid_phones(const std::string& bytes, const std::string& name);
 
 // Mouth-shape classes of ARPAbet phones, as visual speech synthesis groups them: phones of one

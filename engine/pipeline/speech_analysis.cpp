@@ -133,7 +133,10 @@ SpeechTimes speech_times(const SpeechFiles& files, const GraphParams& params) {
   }
   const std::string& name = files.transcript.empty() ? files.audio : files.transcript;
   // Checked before the long onset analysis: a transcript of another recording fails at once.
-  if (!files.transcript.empty()) text::check_transcript_fits(words, duration_s, name);
+  if (!files.transcript.empty()) {
+    text::check_transcript_fits(words, duration_s, name);
+    text::check_phones_fit(phones, duration_s, name);
+  }
   audio::FaceAudio face = audio::face_audio(sound);
   audio::OnsetAnalysis onsets = audio::detect_onsets(std::move(sound), onset_params_of(params));
   if (!files.allow_silence) {

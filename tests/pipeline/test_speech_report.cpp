@@ -6,6 +6,7 @@
 
 #include "audio/audio_file.h"
 #include "engine/core/csv.h"
+#include "engine/core/error.h"
 #include "engine/pipeline/speech_report.h"
 #include "engine/synth/synth.h"
 #include "tests/cli/cli_run.h"
@@ -65,7 +66,7 @@ TEST(SpeechReport, ListsThePhonesOfATextGridsPhonesTier) {
   spec.duration_s = 4.0;
   spec.seed = 3;
   synth_write(synth_speaker(spec), dir.path().string(), "s");
-  gmg::testing::write_text(dir.file("s.TextGrid"), R"(File type = "ooTextFile"
+  const std::string grid = R"(File type = "ooTextFile"
 Object class = "TextGrid"
 
 xmin = 0
@@ -109,7 +110,8 @@ item []:
             xmin = 1.42
             xmax = 1.5
             text = "P"
-)");
+)";
+  gmg::testing::write_text(dir.file("s.TextGrid"), grid);
   const Config cfg;
   const nlohmann::ordered_json r = speech_report_json({dir.file("s.wav"), dir.file("s.TextGrid")}, 30.0, cfg);
   ASSERT_EQ(r["phones"].size(), 3u) << r["phones"].dump();
@@ -120,6 +122,18 @@ item []:
   EXPECT_EQ(r["phones"][1]["viseme"], "open vowel");
   EXPECT_DOUBLE_EQ(r["phones"][2]["end_s"].get<double>(), 1.5);
   EXPECT_TRUE(speech_report_json({dir.file("s.wav"), dir.file("s.tsv")}, 30.0, cfg)["phones"].empty());
+  // A phones tier past the audio's end is refused, as a transcript's words are, naming the file.
+  std::string past = grid;
+  past.replace(past.rfind("xmax = 1.5"), 10, "xmax = 9.5");
+  gmg::testing::write_text(dir.file("past.TextGrid"), past);
+  try {
+    speech_report_json({dir.file("s.wav"), dir.file("past.TextGrid")}, 30.0, cfg);
+    ADD_FAILURE() << "accepted a phone ending at 9.5 s in 4 s of audio";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("past.TextGrid: the phones tier runs past the end of the audio: phone \"P\""),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SpeechReport, TheCommandWritesJsonOrCsvAndRefusesOtherNames) {

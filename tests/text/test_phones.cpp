@@ -63,4 +63,20 @@ TEST(Phones, ABrokenPhonesTierNamesTheFile) {
   }
 }
 
+// A phones tier past the audio's end (a transcript of another recording) is refused as words are,
+// naming the file, the phone and both times; within 50 ms of the end it is taken.
+TEST(Phones, APhonesTierPastTheAudiosEndIsRefused) {
+  const std::vector<tx::Phone> phones = {{1.0, 1.2, "M"}, {1.2, 3.5, "AH"}};
+  tx::check_phones_fit(phones, 3.46, "a.TextGrid");
+  try {
+    tx::check_phones_fit(phones, 3.4, "a.TextGrid");
+    ADD_FAILURE() << "accepted a phone ending 0.1 s past the audio";
+  } catch (const gmg::Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "a.TextGrid: the phones tier runs past the end of the audio: phone \"AH\" ends at 3.5 s but the audio "
+              "lasts 3.4 s (a transcript of another recording?)");
+  }
+  tx::check_phones_fit({}, 0.0, "a.TextGrid");
+}
+
 }  // namespace
