@@ -12,6 +12,7 @@
 #include "engine/core/files.h"
 #include "engine/core/json.h"
 #include "engine/core/limits.h"
+#include "engine/face/face_track.h"
 #include "graph/graph_io.h"
 #include "graph/reference_facts.h"
 #include "graph/stats.h"
@@ -82,7 +83,8 @@ std::vector<Count> counts(const MotionGraph& g) {
           {"longest_subsequence", "longest subsequence", s.longest_subsequence},
           {"up_axis", "up axis", enum_name(kUpAxisNames, g.up)},
           {"stance_frames", "stance frames", stance_frames(g)},
-          {"layers", "layers", describe_body_layers(g.motion.skeleton, graph_body_layers(g))}};
+          {"layers", "layers", describe_body_layers(g.motion.skeleton, graph_body_layers(g))},
+          {"face", "face", face_track_summary(g)}};
 }
 
 void run_inspect(const InspectArgs& a) {

@@ -21,6 +21,19 @@ std::string face_track_unavailable(const MotionGraph& g) {
   return "";
 }
 
+std::string face_track_summary(const MotionGraph& g) {
+  const std::string why = face_track_unavailable(g);
+  if (!g.body.has_face() && jaw_joint(g.motion.skeleton) < 0) return "none (" + why + ")";
+  if (!why.empty()) return "along the body (" + why + ")";
+  std::string out = "the new speech: ";
+  if (g.body.has_face()) out += std::to_string(g.body.expression_dims) + " expressions, ";
+  if (!g.face_speech.jaw.empty()) out += "the jaw, ";
+  out += g.face_speech.phones.empty()
+             ? "by sound only (the reference's transcripts have no phones tier)"
+             : "by phones (" + std::to_string(g.face_speech.phones.size()) + " reference phones) and sound";
+  return out;
+}
+
 FaceTrack face_track(const MotionGraph& g, const std::vector<float>& features, const std::vector<text::Phone>* phones,
                      int frames, const FaceParams& params) {
   face_params_validate(params);

@@ -35,6 +35,11 @@ struct FaceTrack {
 // "" when it can, else why not (for the report).
 std::string face_track_unavailable(const MotionGraph& g);
 
+// What a reenactment's face follows with g, for `gmg inspect`: "none (...)" without a face or a
+// jaw, "along the body (<why>)" when face_track_unavailable, else "the new speech: " and what the
+// graph keeps for it (expressions per frame, a jaw, its phones or "sound only").
+std::string face_track_summary(const MotionGraph& g);
+
 // The face track of new speech of `frames` frames, given its face features (audio/face_features.h,
 // frames x kDims) and its phones (seconds; null or empty: none). With params.mode Body or when
 // face_track_unavailable, a track that follows the body (no sources).

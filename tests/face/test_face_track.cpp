@@ -186,6 +186,17 @@ TEST(FaceTrack, FollowsTheBodyWhenAskedOrWhenTheGraphCannotSayMore) {
   bvh.body = SmplxBody();
   bvh.motion.skeleton.joints[1].name = "head";
   EXPECT_EQ(face_track_unavailable(bvh), "the reference has no face (no expressions and no jaw joint)");
+
+  // What `gmg inspect` says of each.
+  const MotionGraph full = face_graph(ref, frames_of(ref));
+  EXPECT_EQ(face_track_summary(full),
+            "the new speech: " + std::to_string(full.body.expression_dims) + " expressions, the jaw, by phones (" +
+                std::to_string(full.face_speech.phones.size()) + " reference phones) and sound");
+  EXPECT_EQ(face_track_summary(face_graph(ref, frames_of(ref), false)).substr(0, 16), "the new speech: ");
+  EXPECT_NE(face_track_summary(face_graph(ref, frames_of(ref), false)).find("by sound only"), std::string::npos);
+  EXPECT_EQ(face_track_summary(g),
+            "along the body (the graph keeps no face speech (built by an older gmg: rebuild it))");
+  EXPECT_EQ(face_track_summary(bvh), "none (the reference has no face (no expressions and no jaw joint))");
 }
 
 TEST(FaceTrack, ItsParametersAreCheckedWithTheirRanges) {
