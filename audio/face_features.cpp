@@ -54,16 +54,6 @@ struct Buffers {
   Buffers& operator=(const Buffers&) = delete;
 };
 
-// The p-th percentile (0..100) by nearest rank of a copy of v, as audio/speech_features.cpp takes
-// the speaking level; 0 for an empty v.
-double percentile_of(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  const std::size_t k =
-      std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p / 100.0 * static_cast<double>(v.size()))));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
 }  // namespace
 
 FaceAudio face_audio(const Audio& audio) {

@@ -8,9 +8,6 @@
 #include "engine/core/math.h"
 
 namespace gmg::audio {
-namespace {
-
-// The p-th percentile (0..100) by nearest rank of a copy of v; 0 for an empty v.
 double percentile_of(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   const std::size_t k =
@@ -18,8 +15,6 @@ double percentile_of(std::vector<double> v, double p) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
 }
-
-}  // namespace
 
 SpeechFeatures speech_features(const EnergyTrack& energy, const std::vector<float>& envelope, double fps, int frames,
                                double smooth_s) {

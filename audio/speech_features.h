@@ -30,6 +30,10 @@ struct SpeechFeatures {
 SpeechFeatures speech_features(const EnergyTrack& energy, const std::vector<float>& envelope, double fps, int frames,
                                double smooth_s = 0.3);
 
+// The p-th percentile (0..100) by nearest rank of a copy of v (the speaking level is the 90th of
+// the frames' energy); 0 for an empty v.
+double percentile_of(std::vector<double> v, double p);
+
 // How much a frame of loudness `loudness` (as above) is a pause: 0 down to 20 dB below the speaking
 // level, rising to 1 at 35 dB below.
 inline float pause_weight(float loudness) {
