@@ -7,13 +7,9 @@
 #include "audio/face_features.h"
 #include "engine/core/error.h"
 #include "engine/motion/body_parts.h"
+#include "engine/motion/rotation.h"
 
 namespace gmg {
-
-double rotation_angle(const glm::dquat& q) {
-  const double s = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
-  return 2.0 * std::atan2(s, std::abs(q.w));
-}
 
 FaceSpeech face_speech_of(const MotionGraph& g, const std::vector<ClipFaceSpeech>& clips) {
   constexpr int kDims = audio::FaceFeatures::kDims;

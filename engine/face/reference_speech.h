@@ -23,7 +23,4 @@ struct ClipFaceSpeech {
 // its frames.
 FaceSpeech face_speech_of(const MotionGraph& g, const std::vector<ClipFaceSpeech>& clips);
 
-// The angle of a unit quaternion's rotation, radians in [0, pi].
-double rotation_angle(const glm::dquat& q);
-
 }  // namespace gmg

@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/motion/body_parts.h"
+#include "engine/motion/rotation.h"
 
 namespace gmg {
 namespace {
@@ -27,10 +28,7 @@ std::vector<double> jaw_angles(const Motion& m) {
   const int jaw = jaw_joint(m.skeleton);
   if (jaw < 0) return out;
   out.reserve(static_cast<std::size_t>(m.frame_count));
-  for (int f = 0; f < m.frame_count; ++f) {
-    const glm::dquat& q = m.rotation(f, jaw);
-    out.push_back(2.0 * std::atan2(std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z), std::abs(q.w)));
-  }
+  for (int f = 0; f < m.frame_count; ++f) out.push_back(rotation_angle(m.rotation(f, jaw)));
   return out;
 }
 

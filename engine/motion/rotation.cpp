@@ -140,6 +140,10 @@ glm::dquat slerp_shortest(const glm::dquat& a, const glm::dquat& b_in, double t)
   return glm::normalize(a * wa + b * wb);
 }
 
+double rotation_angle(const glm::dquat& q) {
+  return 2.0 * std::atan2(std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z), std::abs(q.w));
+}
+
 double rotation_angle_between(const glm::dquat& a, const glm::dquat& b) {
   const double d = std::abs(glm::dot(glm::normalize(a), glm::normalize(b)));
   return 2.0 * std::acos(glm::clamp(d, 0.0, 1.0));

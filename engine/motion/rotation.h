@@ -45,6 +45,10 @@ glm::dvec3 quat_to_expmap(const glm::dquat& q);
 // Spherical interpolation along the shorter arc (q and -q are the same rotation), t in [0, 1].
 glm::dquat slerp_shortest(const glm::dquat& a, const glm::dquat& b, double t);
 
+// The angle of a unit quaternion's rotation, radians in [0, pi] (from atan2, exact for the small
+// angles of a jaw, where acos of the real part loses digits).
+double rotation_angle(const glm::dquat& q);
+
 // Angle (radians, in [0, pi]) of the rotation taking a to b.
 double rotation_angle_between(const glm::dquat& a, const glm::dquat& b);
 

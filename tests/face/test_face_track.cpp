@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/face/face_track.h"
 #include "engine/face/reference_speech.h"
+#include "engine/motion/rotation.h"
 #include "tests/face/synthetic_face.h"
 
 namespace gmg {

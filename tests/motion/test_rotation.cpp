@@ -132,5 +132,15 @@ TEST(Rotation, BadOrderIsRejected) {
   EXPECT_THROW(euler_order_from_string("XY"), Error);
 }
 
+// The angle of a rotation, exact for the small angles of a jaw (acos of the real part keeps only
+// about 1e-8 rad there), the same for q and -q, pi for a half turn.
+TEST(Rotation, AngleOfARotationSmallOrLarge) {
+  const glm::dvec3 axis = glm::normalize(glm::dvec3(0.3, -1.0, 0.2));
+  for (double a : {0.0, 1e-9, 0.0123, 1.0, 3.0})
+    EXPECT_NEAR(rotation_angle(glm::angleAxis(a, axis)), a, 1e-15 + 1e-15 * a) << a;
+  EXPECT_NEAR(rotation_angle(-glm::angleAxis(0.0123, axis)), 0.0123, 1e-15);
+  EXPECT_DOUBLE_EQ(rotation_angle(glm::dquat(0.0, 1.0, 0.0, 0.0)), kPi);
+}
+
 }  // namespace
 }  // namespace gmg
